@@ -1,0 +1,223 @@
+"""The case model: a validated, immutable description of one contact problem.
+
+A case is read from a TOML file (see ``cases/README.md`` for every key) by
+:func:`cases.loader.load_case`.  Solvers receive a :class:`Case` and nothing else.
+Units: mm, N, MPa; angles in degrees.
+
+Conventions shared by both solvers (``shared/paper/formulation.md``):
+
+- body ``a`` is the upper body (the indenter, sphere, pin), body ``b`` the lower one
+  (the plane, disk); global z points into body ``a``;
+- the indenter profile is the paraboloid ``h(x, y) = (x² + y²) / (2 R)``;
+- ``p_n > 0`` is compressive; ``(p_x, p_y)`` is the tangential traction acting on body
+  ``a`` (Eq. 13: it opposes the slip of ``a`` relative to ``b``);
+- the rigid tangential displacement ``g_t,o`` is that of ``a`` relative to ``b``;
+- subsurface stresses are reported in the body ``stress.body`` with ``z >= 0`` the
+  depth into that body, x and y the global axes; tensile stress positive.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+
+class CaseError(ValueError):
+    """A case definition is invalid; the message names the offending key."""
+
+
+@dataclass(frozen=True)
+class Body:
+    """Elastic constants and orthotropic wear coefficients of one body (Eq. 19, 21)."""
+
+    E: float
+    nu: float
+    i1: float = 0.0  # wear coefficient along e1 [1/MPa]
+    i2: float = 0.0  # wear coefficient along e2 [1/MPa]
+
+    @property
+    def G(self) -> float:
+        return self.E / (2.0 * (1.0 + self.nu))
+
+
+@dataclass(frozen=True)
+class Friction:
+    """Orthotropic Coulomb friction (Eqs. 9-14): principal coefficients and axes angle."""
+
+    mu1: float = 0.0
+    mu2: float = 0.0
+    beta: float = 0.0  # angle of e1 from x, counter-clockwise [deg]
+
+    @property
+    def isotropic(self) -> bool:
+        return self.mu1 == self.mu2
+
+
+@dataclass(frozen=True)
+class Grid:
+    """Potential contact area [-Lx/2, Lx/2] x [-Ly/2, Ly/2] with nx x ny cells."""
+
+    Lx: float
+    Ly: float
+    nx: int
+    ny: int
+
+    @property
+    def dx(self) -> float:
+        return self.Lx / self.nx
+
+    @property
+    def dy(self) -> float:
+        return self.Ly / self.ny
+
+    @property
+    def x(self):
+        import numpy as np
+
+        return (np.arange(self.nx) + 0.5) * self.dx - 0.5 * self.Lx
+
+    @property
+    def y(self):
+        import numpy as np
+
+        return (np.arange(self.ny) + 0.5) * self.dy - 0.5 * self.Ly
+
+
+@dataclass(frozen=True)
+class Load:
+    """Static loading of one step: normal load or approach, tangential load or shift.
+
+    Normal: exactly one of ``P`` [N] (load control) and ``approach`` [mm]
+    (displacement control, the rigid approach g_o of Eq. 1).
+    Tangential: either a load ``(Qx, Qy)`` [N] (load control), or a rigid shift
+    ``(shift_x, shift_y)`` [mm] of body a relative to body b (displacement control), or
+    ``sliding = true``: gross sliding of a relative to b along ``slide_angle`` [deg from x].
+    """
+
+    P: float | None = None
+    approach: float | None = None
+    Qx: float | None = None
+    Qy: float | None = None
+    shift_x: float | None = None
+    shift_y: float | None = None
+    sliding: bool = False
+    slide_angle: float = 0.0
+
+    @property
+    def load_controlled(self) -> bool:
+        return self.P is not None
+
+    @property
+    def tangential_mode(self) -> str:
+        """'none', 'load', 'shift' or 'sliding'."""
+        if self.sliding:
+            return "sliding"
+        if self.Qx is not None or self.Qy is not None:
+            return "load"
+        if self.shift_x is not None or self.shift_y is not None:
+            return "shift"
+        return "none"
+
+
+@dataclass(frozen=True)
+class SlidingWear:
+    """Pin-on-disk: constant load, every cell slides ``step`` per increment (case 4, 5)."""
+
+    step: float = 1.0  # sliding distance per increment [mm]
+    distance: float = 640.0  # total sliding distance [mm]
+    output_s: tuple[float, ...] = ()  # sliding distances written out [mm]
+
+
+@dataclass(frozen=True)
+class Fretting:
+    """Alternating tangential displacement 0 -> +d -> -d -> +d ... (case 6)."""
+
+    amplitude: float = 0.004  # [mm]
+    steps_per_cycle: int = 20
+    cycles: int = 100
+    jump: float = 1.0  # cycle-jump (wear acceleration) factor
+    output_cycles: tuple[int, ...] = ()
+
+
+@dataclass(frozen=True)
+class StressOutput:
+    """Where subsurface stresses are sampled (Eq. 32-34)."""
+
+    body: str = "b"  # body whose stresses are reported: 'a' or 'b'
+    depth: float = 0.3  # deepest layer [mm]
+    nz: int = 31  # layers from z = 0 to depth (inclusive)
+    x0: float = 0.0  # planes pass through (x0, y0)
+    y0: float = 0.0
+
+    @property
+    def z(self):
+        import numpy as np
+
+        return np.linspace(0.0, self.depth, self.nz)
+
+
+@dataclass(frozen=True)
+class Solver:
+    """Half-space solver settings (section 3.4)."""
+
+    method: str = "cg"  # 'cg' (Polonsky-Keer normal + accelerated tangential) or 'uzawa'
+    tol: float = 1e-10  # relative residual of the complementarity conditions
+    max_iter: int = 20000
+
+
+@dataclass(frozen=True)
+class FemSettings:
+    """Finite-element reference settings; lengths in units of the Hertz radius a0."""
+
+    block: float = 20.0  # block half-width L / a0
+    depth: float = 20.0  # block depth H / a0
+    h: float = 0.125  # element size in the contact zone / a0
+    order: int = 2
+    penalty: float = 100.0  # normal penalty in units of E*/h
+
+
+@dataclass(frozen=True)
+class Case:
+    name: str
+    kind: str  # 'static' | 'sliding_wear' | 'fretting'
+    a: Body
+    b: Body
+    R: float
+    grid: Grid
+    friction: Friction
+    load: Load
+    stress: StressOutput = field(default_factory=StressOutput)
+    solver: Solver = field(default_factory=Solver)
+    sliding_wear: SlidingWear | None = None
+    fretting: Fretting | None = None
+    fem: FemSettings = field(default_factory=FemSettings)
+    tolerances: dict[str, float] = field(default_factory=dict)
+    description: str = ""
+    param: str = ""  # sweep label such as 'mu=0.25'; '' when not a sweep point
+    source: str = ""  # path of the TOML file
+
+    @property
+    def identical_materials(self) -> bool:
+        return self.a.E == self.b.E and self.a.nu == self.b.nu
+
+    @property
+    def E_star(self) -> float:
+        """Contact modulus 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b."""
+        return 1.0 / ((1 - self.a.nu**2) / self.a.E + (1 - self.b.nu**2) / self.b.E)
+
+    @property
+    def hertz_a0(self) -> float:
+        """Hertz radius a0 = (3 P R / 4 E*)^(1/3) for the normal load (load control only)."""
+        if self.load.P is None:
+            raise CaseError("hertz_a0 needs load.P")
+        return (3.0 * self.load.P * self.R / (4.0 * self.E_star)) ** (1.0 / 3.0)
+
+    def with_changes(self, **kw) -> Case:
+        return replace(self, **kw)
+
+
+def check_positive(value: float, key: str, *, allow_zero: bool = False) -> None:
+    ok = value >= 0 if allow_zero else value > 0
+    if not (isinstance(value, int | float) and math.isfinite(value) and ok):
+        bound = ">= 0" if allow_zero else "> 0"
+        raise CaseError(f"{key} = {value!r}: must be a finite number {bound}")

@@ -1,0 +1,142 @@
+"""The common result container shared by every solver, and its atomic on-disk form.
+
+A solver returns a :class:`RunResult`: per output step a :class:`StepResult` with the
+scalar summary (the ``summary.csv`` columns of DESIGN.md), surface fields on a regular
+grid, and subsurface planes (xz and yz through the load centre).
+
+Surface fields, arrays of shape (nx, ny) indexed [i, j] = (x[i], y[j]):
+``p_n, p_x, p_y`` tractions on body a [MPa]; ``gap`` normal gap [mm]; ``slip_x, slip_y``
+slip increment of the step [mm]; ``wear_a, wear_b`` accumulated wear depth [mm];
+``state`` 0 open, 1 stick, 2 slip.
+
+Plane fields, arrays of shape (ns, nz) for coordinates (s, z), s = x on 'xz' and y on
+'yz', z the depth into the reported body: ``sxx, syy, szz, sxy, sxz, syz, vm`` [MPa].
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+SUMMARY_COLUMNS = [
+    "case", "solver", "param", "step", "s", "cycle", "P", "Qx", "Qy", "contact_area",
+    "a_x", "a_y", "p_max", "w_max", "wear_volume", "vm_max", "vm_max_x", "vm_max_y",
+    "vm_max_z", "stick_area", "iterations", "converged", "wall_s",
+]
+STRESS_COMPONENTS = ("sxx", "syy", "szz", "sxy", "sxz", "syz")
+OPEN, STICK, SLIP = 0, 1, 2
+
+
+def von_mises(sxx, syy, szz, sxy, sxz, syz):
+    """Von Mises equivalent stress sqrt(3 J2)."""
+    return np.sqrt(
+        0.5 * ((sxx - syy) ** 2 + (syy - szz) ** 2 + (szz - sxx) ** 2)
+        + 3.0 * (sxy**2 + sxz**2 + syz**2)
+    )
+
+
+@dataclass
+class Plane:
+    """A subsurface plane: coordinate s along the plane, depth z, stress components."""
+
+    s: np.ndarray
+    z: np.ndarray
+    fields: dict[str, np.ndarray]
+
+    def vm_max(self) -> tuple[float, float, float]:
+        """(max sigma_VM, s at max, z at max)."""
+        vm = self.fields["vm"]
+        i, k = np.unravel_index(int(np.argmax(vm)), vm.shape)
+        return float(vm[i, k]), float(self.s[i]), float(self.z[k])
+
+
+@dataclass
+class StepResult:
+    scalars: dict[str, float]
+    x: np.ndarray
+    y: np.ndarray
+    surface: dict[str, np.ndarray]
+    planes: dict[str, Plane] = field(default_factory=dict)
+
+
+@dataclass
+class RunResult:
+    case: str
+    solver: str
+    param: str
+    steps: list[StepResult]
+    meta: dict = field(default_factory=dict)
+    tables: dict[str, dict[str, np.ndarray]] = field(default_factory=dict)
+
+    def summary_rows(self) -> list[dict]:
+        rows = []
+        for step in self.steps:
+            row = {c: step.scalars.get(c, np.nan) for c in SUMMARY_COLUMNS}
+            row.update(case=self.case, solver=self.solver, param=self.param)
+            rows.append(row)
+        return rows
+
+
+# ---------------------------------------------------------------- atomic files
+
+
+@contextmanager
+def atomic_path(path: str | Path) -> Iterator[Path]:
+    """Yield a temporary path beside ``path``; rename it onto ``path`` only on success."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
+    os.close(fd)
+    tmp = Path(tmp)
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+def atomic_write_text(path: str | Path, text: str) -> None:
+    with atomic_path(path) as tmp:
+        tmp.write_text(text)
+
+
+def save_step(path: str | Path, step: StepResult) -> None:
+    """Write one step as ``.npz`` atomically (surface fields, planes, scalars as JSON)."""
+    arrays: dict[str, np.ndarray] = {"x": step.x, "y": step.y}
+    for key, arr in step.surface.items():
+        arrays[f"surface/{key}"] = arr
+    for name, plane in step.planes.items():
+        arrays[f"plane/{name}/s"] = plane.s
+        arrays[f"plane/{name}/z"] = plane.z
+        for comp, arr in plane.fields.items():
+            arrays[f"plane/{name}/{comp}"] = arr
+    arrays["scalars"] = np.array(json.dumps(step.scalars, default=float))
+    with atomic_path(path) as tmp:
+        with open(tmp, "wb") as fh:
+            np.savez_compressed(fh, **arrays)
+
+
+def load_step(path: str | Path) -> StepResult:
+    with np.load(path) as data:
+        surface, planes_raw = {}, {}
+        for key in data.files:
+            if key.startswith("surface/"):
+                surface[key.split("/", 1)[1]] = data[key]
+            elif key.startswith("plane/"):
+                _, name, comp = key.split("/")
+                planes_raw.setdefault(name, {})[comp] = data[key]
+        planes = {
+            name: Plane(s=d.pop("s"), z=d.pop("z"), fields=d) for name, d in planes_raw.items()
+        }
+        return StepResult(
+            scalars=json.loads(str(data["scalars"])), x=data["x"], y=data["y"],
+            surface=surface, planes=planes,
+        )

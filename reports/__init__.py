@@ -1,0 +1,1 @@
+"""Runner, comparisons, plots, HTML report, gates and the ``contact-vv`` CLI."""
