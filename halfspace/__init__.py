@@ -4,3 +4,15 @@ Implements shared/paper/formulation.md: kernels (Eq. 5, 41), FFT influence produ
 orthotropic frictional contact (Eq. 7-17, section 3.4), orthotropic Archard wear
 (Eq. 18-23) and subsurface stresses (Eq. 32-34, Appendices A and C).
 """
+
+from __future__ import annotations
+
+
+def solve(case, progress: bool = False):
+    """Solve a case (see :func:`halfspace.solver.solve`); solver name "ic"."""
+    from .solver import solve as _solve
+
+    return _solve(case, progress=progress)
+
+
+__all__ = ["solve"]

@@ -1,0 +1,238 @@
+"""One contact step of section 3.4: normal and frictional tractions on the grid.
+
+``ContactSolver.solve`` takes the separation profile ``h`` (geometric gap + wear, Eq. 29
+without the rigid approach), the normal control (load P or approach), the tangential
+control (load Q, rigid shift g_t,o, or gross sliding) and the state of the previous
+step (its tangential displacement g_t^(k-1), Eq. 23/30) and returns the tractions, the
+slip increment and the contact states.  For dissimilar materials (K != 0, Eq. 6) the
+normal and tangential problems are coupled and solved alternately until both
+complementarity residuals are below tolerance; for K = 0 one pass is exact.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from cases.model import Friction, Grid
+
+from .friction import mu_dual_norm, mu_norm
+from .materials import Materials
+from .normal import (
+    ContactNotConverged,
+    NormalSolution,
+    normal_residual,
+    polonsky_keer,
+    uzawa_normal,
+)
+from .operator import SurfaceOperator
+from .tangential import TangentialSolution, solve_tangential, tangential_residual
+
+OPEN, STICK, SLIP = 0, 1, 2
+SLIP_RTOL = 1e-6  # a contact cell slips when its traction is on the friction limit
+
+
+class ContactAtEdge(RuntimeError):
+    """The contact area reaches the edge of the potential contact grid."""
+
+
+@dataclass
+class ContactState:
+    """What a step hands to the next: tractions, rigid motion and g_t (Eq. 30)."""
+
+    p_n: np.ndarray
+    p_x: np.ndarray
+    p_y: np.ndarray
+    g_x: np.ndarray  # total tangential gap g_t = g_t,o + u_t at the end of the step
+    g_y: np.ndarray
+    shift_x: float = 0.0  # rigid tangential displacement g_t,o
+    shift_y: float = 0.0
+    approach: float = 0.0
+
+    @classmethod
+    def initial(cls, shape: tuple[int, int]) -> ContactState:
+        z = np.zeros(shape)
+        return cls(z, z.copy(), z.copy(), z.copy(), z.copy())
+
+
+@dataclass
+class StepSolution:
+    state: ContactState
+    gap: np.ndarray
+    slip_x: np.ndarray
+    slip_y: np.ndarray
+    status: np.ndarray  # OPEN / STICK / SLIP per cell
+    P: float
+    Qx: float
+    Qy: float
+    iterations: int
+    residual_n: float
+    residual_t: float
+
+
+class ContactSolver:
+    """Contact steps on one grid with one material pair and friction law."""
+
+    def __init__(self, grid: Grid, mat: Materials, friction: Friction, *,
+                 method: str = "cg", tol: float = 1e-10, max_iter: int = 20000):
+        if method not in ("cg", "uzawa"):
+            raise ValueError(f"unknown method {method!r}")
+        self.grid, self.mat, self.friction = grid, mat, friction
+        self.method, self.tol, self.max_iter = method, tol, max_iter
+        self.op = SurfaceOperator(grid.nx, grid.ny, grid.dx, grid.dy, mat)
+        self.dA = grid.dx * grid.dy
+        s = self.op.spectra
+        self.L_nn = float(np.abs(s["zz"]).max())
+        half = 0.5 * (s["xx"].real - s["yy"].real)
+        self.L_tt = float((0.5 * (s["xx"].real + s["yy"].real)
+                           + np.sqrt(half**2 + s["xy"].real ** 2)).max())
+        self.c_n = 1.0 / self.op.self_zz
+        self.c_t = 1.0 / self.op.self_tt
+
+    # ------------------------------------------------------------------ pieces
+    def _normal(self, h, P, approach, p0, wear_rate=None) -> NormalSolution:
+        """Normal solve; ``wear_rate`` k_w adds the implicit wear k_w p_n to the gap."""
+        kw = dict(P=P, approach=approach, p0=p0, tol=self.tol, max_iter=self.max_iter)
+        if wear_rate is None:
+            apply, L = self.op.normal, self.L_nn
+        else:
+            def apply(p):
+                return self.op.normal(p) + wear_rate * p
+
+            L = self.L_nn + float(wear_rate.max())
+        if self.method == "cg":
+            return polonsky_keer(apply, h, self.dA, self.c_n, **kw)
+        return uzawa_normal(apply, h, self.dA, self.c_n, 1.0 / L, **kw)
+
+    def _tangential(self, shift, u_tn, g_prev, p_n, p0) -> TangentialSolution:
+        b_x = shift[0] + u_tn[0] - g_prev[0]
+        b_y = shift[1] + u_tn[1] - g_prev[1]
+        return solve_tangential(self.op.tangential, b_x, b_y, p_n, self.friction, self.L_tt,
+                                self.c_t, p0=p0, method=self.method, tol=self.tol,
+                                max_iter=self.max_iter)
+
+    def _tangential_load(self, Q, shift0, u_tn, g_prev, p_n, p0):
+        """Find the rigid shift g_t,o that makes the tangential resultant equal Q (a.1)."""
+        fr = self.friction
+        Q = np.asarray(Q, float)
+        P = p_n.sum() * self.dA
+        qn = np.hypot(*Q)
+        if qn > 0:
+            capacity = P * float(mu_dual_norm(Q[0] / qn, Q[1] / qn, fr))
+            if qn >= capacity * (1 - 1e-9):
+                raise ContactNotConverged(
+                    f"tangential load |Q| = {qn:.6g} N reaches the friction capacity "
+                    f"{capacity:.6g} N: gross sliding, use load.sliding instead")
+        # Mindlin stick stiffness 8 G* a, 1/G* = 2 (2 - nu) / G (Eq. 6 averages)
+        a_eff = np.sqrt(np.count_nonzero(p_n > 0) * self.dA / np.pi)
+        k_t = 4.0 * a_eff * self.mat.G / (2.0 - self.mat.nu)
+        J = np.eye(2) * k_t
+        zeta = np.asarray(shift0, float)
+        sol = self._tangential(zeta, u_tn, g_prev, p_n, p0)
+        iters = sol.iterations
+        F = np.array([sol.p_x.sum(), sol.p_y.sum()]) * self.dA - Q
+        scale = max(qn, 1e-3 * P * max(fr.mu1, fr.mu2))
+        for _ in range(100):
+            if np.hypot(*F) <= self.tol * scale * 10:
+                return sol, zeta, iters
+            dz = -np.linalg.solve(J, F)
+            zeta = zeta + dz
+            sol = self._tangential(zeta, u_tn, g_prev, p_n, (sol.p_x, sol.p_y))
+            iters += sol.iterations
+            F_new = np.array([sol.p_x.sum(), sol.p_y.sum()]) * self.dA - Q
+            dF = F_new - F
+            J = J + np.outer(dF - J @ dz, dz) / float(dz @ dz)  # Broyden update
+            F = F_new
+        raise ContactNotConverged(
+            f"tangential load control did not converge: |Q - Q_target| = {np.hypot(*F):.3e} N")
+
+    # ------------------------------------------------------------------ a step
+    def solve(
+        self,
+        h: np.ndarray,
+        *,
+        P: float | None = None,
+        approach: float | None = None,
+        Q: tuple[float, float] | None = None,
+        shift: tuple[float, float] | None = None,
+        prev: ContactState | None = None,
+        wear_rate: np.ndarray | None = None,
+        check_edge: bool = True,
+    ) -> StepSolution:
+        """Solve one step. Tangential control: ``Q`` (load) or ``shift`` (g_t,o, total);
+        neither: the rigid shift of ``prev`` is held.  ``wear_rate`` (mm/MPa per cell)
+        makes the wear of the step implicit: the gap gains ``wear_rate * p_n`` (Eq. 23,
+        29 with a known slip norm); the returned gap includes it."""
+        shape = (self.grid.nx, self.grid.ny)
+        prev = prev or ContactState.initial(shape)
+        if shift is None:
+            shift = (prev.shift_x, prev.shift_y)
+        shift = np.asarray(shift, float)
+        frictional = self.friction.mu1 > 0
+        coupled = self.op.coupled and frictional
+        p_x, p_y = prev.p_x, prev.p_y
+        p_n0 = prev.p_n if np.any(prev.p_n > 0) else None
+        g_prev = (prev.g_x, prev.g_y)
+        iters, tsol, zero = 0, None, np.zeros(shape)
+        for _ in range(200 if coupled else 1):
+            h_n = h + self.op.normal_from_tangential(p_x, p_y) if coupled else h
+            nsol = self._normal(h_n, P, approach, p_n0, wear_rate)
+            iters += nsol.iterations
+            if not frictional:
+                tsol = TangentialSolution(zero, zero.copy(), zero.copy(), zero.copy(), 0, 0.0)
+                break
+            u_tn = self.op.tangential_from_normal(nsol.p_n)
+            if Q is not None:
+                tsol, shift, it_t = self._tangential_load(Q, shift, u_tn, g_prev, nsol.p_n,
+                                                          (p_x, p_y))
+            else:
+                tsol = self._tangential(shift, u_tn, g_prev, nsol.p_n, (p_x, p_y))
+                it_t = tsol.iterations
+            iters += it_t
+            if not coupled:
+                break
+            change = np.hypot(np.linalg.norm(tsol.p_x - p_x), np.linalg.norm(tsol.p_y - p_y))
+            p_x, p_y, p_n0 = tsol.p_x, tsol.p_y, nsol.p_n
+            # converged when the normal problem is consistent with the new tractions
+            h_chk = h + self.op.normal_from_tangential(p_x, p_y)
+            g_chk = h_chk + self.op.normal(nsol.p_n) - nsol.approach
+            if wear_rate is not None:
+                g_chk = g_chk + wear_rate * nsol.p_n
+            if (normal_residual(nsol.p_n, g_chk, self.c_n) < self.tol
+                    and change <= self.tol * np.linalg.norm(nsol.p_n)):
+                break
+        else:
+            raise ContactNotConverged("normal-tangential coupling (K != 0) did not converge "
+                                      f"in 200 passes: traction change {change:.3e}")
+        p_n = nsol.p_n
+        u_x, u_y, u_z = self.op(tsol.p_x, tsol.p_y, p_n)
+        gap = h + u_z - nsol.approach
+        if wear_rate is not None:
+            gap = gap + wear_rate * p_n
+        g_x, g_y = shift[0] + u_x, shift[1] + u_y
+        slip_x, slip_y = g_x - g_prev[0], g_y - g_prev[1]
+        status = np.where(p_n > 0, STICK, OPEN)
+        if frictional:
+            on_limit = mu_norm(tsol.p_x, tsol.p_y, self.friction) >= (1 - SLIP_RTOL) * p_n
+            status = np.where((p_n > 0) & on_limit, SLIP, status)
+        else:
+            status = np.where(p_n > 0, SLIP, OPEN)
+        if check_edge:
+            self._check_edge(p_n)
+        res_t = (tangential_residual(tsol.p_x, tsol.p_y, slip_x, slip_y, p_n, self.friction,
+                                     self.c_t) if frictional else 0.0)
+        state = ContactState(p_n, tsol.p_x, tsol.p_y, g_x, g_y, float(shift[0]),
+                             float(shift[1]), float(nsol.approach))
+        return StepSolution(
+            state=state, gap=gap, slip_x=slip_x, slip_y=slip_y, status=status,
+            P=float(p_n.sum() * self.dA), Qx=float(tsol.p_x.sum() * self.dA),
+            Qy=float(tsol.p_y.sum() * self.dA), iterations=iters,
+            residual_n=normal_residual(p_n, gap, self.c_n), residual_t=res_t)
+
+    def _check_edge(self, p_n: np.ndarray) -> None:
+        contact = p_n > 0
+        if contact[0].any() or contact[-1].any() or contact[:, 0].any() or contact[:, -1].any():
+            raise ContactAtEdge(
+                "the contact area reaches the edge of the potential contact grid "
+                f"({self.grid.Lx} x {self.grid.Ly} mm): enlarge grid.Lx/grid.Ly")

@@ -1,0 +1,121 @@
+"""Influence products u = A p (Eq. 27) as aperiodic FFT convolutions.
+
+The influence coefficients depend on the offset x_I - x_J only (Eq. 5, 41), so each
+block of A is a discrete convolution.  Zero padding to at least 2n - 1 points per axis
+makes the cyclic FFT convolution equal the aperiodic sum exactly (no periodic images):
+O(N log N) time, O(N) memory, no dense N x N matrix.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.fft as sfft
+
+from .influence import surface_coefficients
+from .materials import Materials
+
+WORKERS = 1  # FFT threads; fixed so results are bit-reproducible for a given version
+
+
+def padded_shape(nx: int, ny: int) -> tuple[int, int]:
+    """FFT sizes >= 2n - 1 (no wrap-around of the aperiodic convolution)."""
+    return (sfft.next_fast_len(2 * nx - 1, real=True), sfft.next_fast_len(2 * ny - 1, real=True))
+
+
+def offsets(n: int, d: float, m: int) -> np.ndarray:
+    """Offsets in wrap-around order for a length-m FFT: 0, d, ..., (n-1)d, 0.., -(n-1)d, ..., -d."""
+    k = np.zeros(m)
+    k[:n] = np.arange(n) * d
+    k[m - n + 1 :] = -np.arange(n - 1, 0, -1) * d
+    return k
+
+
+def kernel_spectrum(coeff: np.ndarray, shape: tuple[int, int], n: tuple[int, int]) -> np.ndarray:
+    """rfft2 of a kernel sampled on wrap-around offsets, zero outside |offset| < n cells."""
+    mx, my = shape
+    nx, ny = n
+    mask_x = np.zeros(mx, bool)
+    mask_x[:nx] = True
+    mask_x[mx - nx + 1 :] = True
+    mask_y = np.zeros(my, bool)
+    mask_y[:ny] = True
+    mask_y[my - ny + 1 :] = True
+    k = np.where(mask_x[:, None] & mask_y[None, :], coeff, 0.0)
+    return sfft.rfft2(k, workers=WORKERS)
+
+
+@dataclass
+class ConvolutionOperator:
+    """A set of convolution kernels on one grid, applied by zero-padded FFT."""
+
+    n: tuple[int, int]
+    shape: tuple[int, int]
+    spectra: dict[str, np.ndarray]
+
+    def forward(self, f: np.ndarray) -> np.ndarray:
+        return sfft.rfft2(f, s=self.shape, workers=WORKERS)
+
+    def backward(self, F: np.ndarray) -> np.ndarray:
+        return sfft.irfft2(F, s=self.shape, workers=WORKERS)[: self.n[0], : self.n[1]]
+
+    def apply(self, key: str, f: np.ndarray) -> np.ndarray:
+        return self.backward(self.spectra[key] * self.forward(f))
+
+
+class SurfaceOperator(ConvolutionOperator):
+    """u = A p for the nine blocks of Eq. 27 on a regular grid of dx x dy cells.
+
+    ``u_i(x_I) = sum_J A_ij(x_I - x_J) p_j(x_J)`` with (i, j) in {x, y, z}; p is the
+    traction on body a, u = u^(a) - u^(b) (Eq. 1-2).
+    """
+
+    def __init__(self, nx: int, ny: int, dx: float, dy: float, mat: Materials):
+        shape = padded_shape(nx, ny)
+        xo = offsets(nx, dx, shape[0])[:, None]
+        yo = offsets(ny, dy, shape[1])[None, :]
+        c = surface_coefficients(xo, yo, dx, dy, mat)
+        keys = ["xx", "yy", "zz", "xy"] + (["xz", "yz", "zx", "zy"] if mat.K != 0 else [])
+        spectra = {k: kernel_spectrum(np.broadcast_to(c[k], shape), shape, (nx, ny)) for k in keys}
+        super().__init__(n=(nx, ny), shape=shape, spectra=spectra)
+        self.mat = mat
+        self.coupled = mat.K != 0
+        centre = surface_coefficients(np.zeros(1), np.zeros(1), dx, dy, mat)
+        self.self_zz = float(centre["zz"][0])  # diagonal of A_zz (cell on itself)
+        self.self_tt = float(max(centre["xx"][0], centre["yy"][0]))
+
+    def normal(self, p_n: np.ndarray) -> np.ndarray:
+        """u_z due to the normal pressure alone (A_zz p_n)."""
+        return self.apply("zz", p_n)
+
+    def tangential(self, p_x: np.ndarray, p_y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(u_x, u_y) due to the tangential tractions alone (A_tt p_t)."""
+        Fx, Fy = self.forward(p_x), self.forward(p_y)
+        s = self.spectra
+        return (self.backward(s["xx"] * Fx + s["xy"] * Fy),
+                self.backward(s["xy"] * Fx + s["yy"] * Fy))
+
+    def normal_from_tangential(self, p_x: np.ndarray, p_y: np.ndarray) -> np.ndarray:
+        """u_z due to tangential tractions (A_zx p_x + A_zy p_y); zero when K = 0."""
+        if not self.coupled:
+            return np.zeros(self.n)
+        s = self.spectra
+        return self.backward(s["zx"] * self.forward(p_x) + s["zy"] * self.forward(p_y))
+
+    def tangential_from_normal(self, p_n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(u_x, u_y) due to the normal pressure (A_xz p_n, A_yz p_n); zero when K = 0."""
+        if not self.coupled:
+            return np.zeros(self.n), np.zeros(self.n)
+        F = self.forward(p_n)
+        return self.backward(self.spectra["xz"] * F), self.backward(self.spectra["yz"] * F)
+
+    def __call__(self, p_x, p_y, p_n) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """All three components of u = A p (Eq. 27)."""
+        u_x, u_y = self.tangential(p_x, p_y)
+        u_z = self.normal(p_n)
+        if self.coupled:
+            ux_n, uy_n = self.tangential_from_normal(p_n)
+            u_x, u_y = u_x + ux_n, u_y + uy_n
+            u_z = u_z + self.normal_from_tangential(p_x, p_y)
+        return u_x, u_y, u_z

@@ -1,0 +1,127 @@
+"""Tangential (frictional) contact for fixed normal pressure, Eq. 8-17 and 3.4 (III).
+
+With p_n fixed, the incremental problem with the associated rule (Eq. 13) is the
+convex minimisation over p_t of ``1/2 p_t.A_tt p_t + p_t.b`` on the product of friction
+ellipses ``||p_t||_mu <= p_n`` (Eq. 9), whose gradient is the slip increment
+``dg_t = A_tt p_t + b`` (b = g_t,o + A_tn p_n - g_t^(k-1), Eq. 30).  In the scaled
+variables ``q = M^-1 R p_t`` (R: rotation to e1, e2) the ellipses become discs of radius
+p_n and the update of step (III), ``p_t <- P_E(p_t - r_t M^2 dg_t)``, is exactly the
+projected gradient ``q <- P_disc(q - r_t M R dg_t)``.  Two solvers share that map:
+
+- ``method="uzawa"``: the fixed-point iteration of section 3.4 with r_t = 1/L;
+- ``method="cg"``: the same map with Nesterov acceleration and adaptive restart
+  (FISTA; Beck & Teboulle 2009, O'Donoghue & Candes 2015), O(sqrt(kappa)) iterations.
+
+Both stop on the natural-map residual of Eq. 16,
+``||p_t - P_E(p_t - c_t M^2 dg_t)|| / ||p_n||`` with c_t = 1/A_tt,self.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from cases.model import Friction
+
+from .friction import from_axes, mu_squared, project, to_axes
+from .normal import ContactNotConverged
+
+
+@dataclass
+class TangentialSolution:
+    p_x: np.ndarray
+    p_y: np.ndarray
+    slip_x: np.ndarray  # slip increment dg_t of the step
+    slip_y: np.ndarray
+    iterations: int
+    residual: float
+
+
+def tangential_residual(p_x, p_y, dg_x, dg_y, p_n, fr: Friction, c: float) -> float:
+    """Natural-map residual of Eq. 16, relative to ||p_n||."""
+    mx, my = mu_squared(dg_x, dg_y, fr)
+    sx, sy = project(p_x - c * mx, p_y - c * my, p_n, fr)
+    scale = np.linalg.norm(p_n)
+    return float(np.hypot(np.linalg.norm(p_x - sx), np.linalg.norm(p_y - sy)) / scale)
+
+
+def _disc(q1, q2, rho):
+    n = np.hypot(q1, q2)
+    s = np.where(n > rho, rho / np.where(n > 0, n, 1.0), 1.0)
+    return q1 * s, q2 * s
+
+
+def solve_tangential(
+    apply_tt: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
+    b_x: np.ndarray,
+    b_y: np.ndarray,
+    p_n: np.ndarray,
+    fr: Friction,
+    L: float,
+    c: float,
+    *,
+    p0: tuple[np.ndarray, np.ndarray] | None = None,
+    method: str = "cg",
+    tol: float = 1e-10,
+    max_iter: int = 20000,
+) -> TangentialSolution:
+    """Frictional tractions for fixed p_n; L bounds the largest eigenvalue of A_tt."""
+    mu1, mu2, beta = fr.mu1, fr.mu2, fr.beta
+    if mu1 == 0 or not np.any(p_n > 0):
+        z = np.zeros_like(p_n)
+        return TangentialSolution(z, z.copy(), b_x.copy(), b_y.copy(), 0, 0.0)
+    step = 1.0 / (L * max(mu1, mu2) ** 2)
+
+    def traction(q1, q2):
+        return from_axes(mu1 * q1, mu2 * q2, beta)
+
+    def slip(q1, q2):
+        px, py = traction(q1, q2)
+        ux, uy = apply_tt(px, py)
+        return px, py, ux + b_x, uy + b_y
+
+    def grad(dg_x, dg_y):
+        g1, g2 = to_axes(dg_x, dg_y, beta)
+        return mu1 * g1, mu2 * g2
+
+    if p0 is None:
+        q1 = q2 = np.zeros_like(p_n)
+    else:
+        a1, a2 = to_axes(*p0, beta)
+        q1, q2 = _disc(a1 / mu1, a2 / mu2, p_n)
+    y1, y2, t = q1, q2, 1.0
+    accelerate = method == "cg"
+    res = np.inf
+    for it in range(1, max_iter + 1):
+        px, py, dgx, dgy = slip(y1, y2)
+        if not accelerate or it % 10 == 1:
+            # residual at the current iterate (y == q without acceleration)
+            if accelerate:
+                px, py, dgx_q, dgy_q = slip(q1, q2)
+                res = tangential_residual(px, py, dgx_q, dgy_q, p_n, fr, c)
+                px, py, dgx, dgy = slip(y1, y2)
+            else:
+                res = tangential_residual(px, py, dgx, dgy, p_n, fr, c)
+            if res < tol:
+                px, py, dgx, dgy = slip(q1, q2)
+                return TangentialSolution(px, py, dgx, dgy, it, res)
+        g1, g2 = grad(dgx, dgy)
+        n1, n2 = _disc(y1 - step * g1, y2 - step * g2, p_n)
+        if accelerate:
+            # gradient restart: drop momentum when it points uphill
+            if np.vdot(y1 - n1, n1 - q1) + np.vdot(y2 - n2, n2 - q2) > 0:
+                t = 1.0
+            t_new = 0.5 * (1.0 + np.sqrt(1.0 + 4.0 * t * t))
+            w = (t - 1.0) / t_new
+            y1, y2 = n1 + w * (n1 - q1), n2 + w * (n2 - q2)
+            t = t_new
+        else:
+            y1, y2 = n1, n2
+        q1, q2 = n1, n2
+        if not np.all(np.isfinite(q1)) or not np.all(np.isfinite(q2)):
+            raise ContactNotConverged("tangential traction became NaN/Inf")
+    raise ContactNotConverged(
+        f"tangential contact ({method}) did not converge in {max_iter} iterations: "
+        f"residual {res:.3e} > tol {tol:.1e}")
