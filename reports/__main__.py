@@ -1,0 +1,7 @@
+"""``python -m reports`` is ``contact-vv``."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,240 @@
+"""The ``contact-vv`` command line: list, run, report, gate and sweep.
+
+Exit status: 0 success; 1 a solver failed (did not converge, crashed) or the gate found
+a failed metric, non-converged run or incomplete case; 2 a user error (bad case file,
+unknown case or solver, bad flag, missing results directory), printed as
+``contact-vv: error: <message>`` without a traceback; 130 interrupted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from cases.loader import BUNDLED, CASES_DIR, load_case
+from cases.model import CaseError
+
+from . import solvers
+from .errors import RunFailed, UserError
+
+PROG = "contact-vv"
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str):  # argparse's usage + "prog: error: msg", exit 2
+        self.print_usage(sys.stderr)
+        raise SystemExit(_fail(message))
+
+
+def _fail(message: str) -> int:
+    print(f"{PROG}: error: {message}", file=sys.stderr)
+    return 2
+
+
+def _solver_list(text: str | None) -> list[str] | None:
+    if text is None:
+        return None
+    names = [s.strip() for s in text.split(",") if s.strip()]
+    if not names:
+        raise UserError("--solver needs at least one solver name")
+    return names
+
+
+def _overrides(items: Sequence[str] | None) -> dict[str, Any]:
+    from .sweep import parse_value
+
+    out: dict[str, Any] = {}
+    for item in items or ():
+        key, eq, value = item.partition("=")
+        if not eq or not key.strip():
+            raise UserError(f"--set {item!r}: expected KEY=VALUE (a dotted case key)")
+        out[key.strip()] = parse_value(value)
+    return out
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog=PROG, description="Verification of the half-space contact solver "
+                     "against FEM and analytical references.")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub.required = True
+
+    sub.add_parser("list", help="list the bundled cases and the solvers")
+
+    def common(p: argparse.ArgumentParser, *, solving: bool) -> None:
+        p.add_argument("--out", type=Path, default=Path("results"),
+                       help="results directory (default: ./results)")
+        if solving:
+            p.add_argument("--solver", help="comma-separated solvers (default: every "
+                           f"available one of {','.join(solvers.names())})")
+            p.add_argument("--quick", action="store_true",
+                           help="coarse grids of the case's [quick] table (CI)")
+            p.add_argument("--set", action="append", metavar="KEY=VALUE", dest="overrides",
+                           help="override a dotted case key, e.g. tolerances.p_max=0.02")
+            p.add_argument("--no-progress", action="store_true", help="no progress bars")
+
+    run = sub.add_parser("run", help="run cases through the solvers")
+    run.add_argument("cases", nargs="*", metavar="CASE", help="bundled case name or TOML path")
+    run.add_argument("--all", action="store_true", help="every bundled case")
+    common(run, solving=True)
+
+    report = sub.add_parser("report", help="write DIR/index.html from the results in DIR")
+    common(report, solving=False)
+
+    gate = sub.add_parser("gate", help="print the metrics; exit 1 on any failure")
+    common(gate, solving=False)
+
+    sweep = sub.add_parser("sweep", help="run a parameter sweep on Dask")
+    sweep.add_argument("case", metavar="CASE")
+    sweep.add_argument("--param", action="append", required=True,
+                       metavar="KEY=START:STOP:STEP|V1,V2",
+                       help="swept dotted key; repeat to zip several keys")
+    sweep.add_argument("--scheduler", metavar="ADDRESS",
+                       help="existing Dask scheduler (default: a LocalCluster)")
+    sweep.add_argument("--workers", type=int, default=2,
+                       help="LocalCluster worker processes; 0 runs serially (default 2)")
+    common(sweep, solving=True)
+    return parser
+
+
+# ------------------------------------------------------------------ commands
+
+
+def cmd_list(args: argparse.Namespace) -> int:
+    for name in BUNDLED:
+        if not (CASES_DIR / f"{name}.toml").is_file():
+            print(f"{name:26s} (case file missing)")
+            continue
+        try:
+            points = load_case(name)
+        except CaseError as exc:
+            print(f"{name:26s} INVALID: {exc}")
+            continue
+        first = points[0]
+        sweep = f"{len(points)} points" if len(points) > 1 else "1 point"
+        print(f"{name:26s} {first.kind:13s} {sweep:10s} {first.description}")
+    print()
+    for s in solvers.names():
+        ok, reason = solvers.available(s)
+        print(f"solver {s:9s} {'available' if ok else 'unavailable: ' + reason}")
+    return 0
+
+
+def _report_runs(runs, out: Path) -> int:
+    failures, user = [], False
+    for r in runs:
+        if r.failures:
+            failures += r.failures
+            user = user or r.user_error
+        else:
+            print(f"{r.name}: {r.path} ({r.wall_s:.1f} s)")
+    if failures:
+        for line in failures:
+            print(f"{PROG}: error: {line}", file=sys.stderr)
+        print(f"{PROG}: incomplete results left in {out}/.<case>.partial "
+              "(not reported as complete)", file=sys.stderr)
+        return 2 if user else 1
+    return 0
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    from .runner import execute, plan_case, select_solvers
+
+    names = list(args.cases)
+    if args.all:
+        missing = [n for n in BUNDLED if not (CASES_DIR / f"{n}.toml").is_file()]
+        for n in missing:
+            print(f"{PROG}: warning: bundled case {n} has no case file yet; skipped",
+                  file=sys.stderr)
+        names += [n for n in BUNDLED if n not in missing and n not in names]
+    if not names:
+        raise UserError("run needs at least one CASE or --all")
+    chosen, skipped = select_solvers(_solver_list(args.solver))
+    overrides = _overrides(args.overrides)
+    plans = [plan_case(n, chosen, quick=args.quick, overrides=overrides, skipped=skipped)
+             for n in names]  # validate every case before running any
+    seen: dict[str, str] = {}
+    for n, p in zip(names, plans, strict=True):
+        if p.dir_name in seen:
+            raise UserError(f"cases {seen[p.dir_name]} and {n} both write {p.dir_name}/")
+        seen[p.dir_name] = n
+    progress = False if args.no_progress else None
+    runs = [execute(p, args.out, progress=progress,
+                    extra_manifest={"threads_per_worker": 1}) for p in plans]
+    return _report_runs(runs, args.out)
+
+
+def cmd_sweep(args: argparse.Namespace) -> int:
+    from .runner import execute, select_solvers, serial_executor
+    from .sweep import DaskExecutor, parse_param, plan_sweep
+
+    params = [parse_param(p) for p in args.param]
+    if args.workers < 0:
+        raise UserError("--workers must be >= 0")
+    chosen, skipped = select_solvers(_solver_list(args.solver))
+    plan = plan_sweep(args.case, params, chosen, quick=args.quick,
+                      overrides=_overrides(args.overrides), skipped=skipped)
+    progress = False if args.no_progress else None
+    t0 = time.perf_counter()
+    if args.workers == 0 and not args.scheduler:
+        run = execute(plan, args.out, executor=serial_executor, progress=progress,
+                      extra_manifest={"executor": {"scheduler": "serial", "workers": 1}})
+    else:
+        with DaskExecutor(args.scheduler, args.workers) as dask:
+            run = execute(plan, args.out, executor=dask, progress=progress,
+                          extra_manifest={"executor": dask.info})
+    wall = time.perf_counter() - t0
+    code = _report_runs([run], args.out)
+    if code == 0:
+        from .plots import write_sweep_plot
+
+        write_sweep_plot(run.path)
+        speed = run.unit_wall_s / run.wall_s if run.wall_s > 0 else float("nan")
+        print(f"sweep: {len(plan.units())} task(s) in {wall:.1f} s wall; serial time "
+              f"(sum of task times) {run.unit_wall_s:.1f} s; speed-up {speed:.2f}x")
+    return code
+
+
+def cmd_report(args: argparse.Namespace) -> int:
+    from .html import write_report
+
+    path = write_report(args.out)
+    print(f"report: {path}")
+    return 0
+
+
+def cmd_gate(args: argparse.Namespace) -> int:
+    from .gate import run_gate
+
+    return run_gate(args.out)
+
+
+COMMANDS = {"list": cmd_list, "run": cmd_run, "report": cmd_report, "gate": cmd_gate,
+            "sweep": cmd_sweep}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``contact-vv`` console script; returns the exit status."""
+    try:
+        args = build_parser().parse_args(argv)
+    except SystemExit as exc:  # --help (0) or a bad flag (2)
+        return int(exc.code or 0)
+    try:
+        return COMMANDS[args.command](args)
+    except (UserError, CaseError) as exc:
+        return _fail(str(exc))
+    except RunFailed as exc:
+        for line in exc.failures:
+            print(f"{PROG}: error: {line}", file=sys.stderr)
+        return 1
+    except KeyboardInterrupt:
+        print(f"{PROG}: interrupted; nothing incomplete is presented as complete",
+              file=sys.stderr)
+        return 130
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,257 @@
+"""Compare solvers pairwise: tractions, wear, contact extent, σ_VM planes and maxima.
+
+For every pair of solvers (in registry order, the second one the reference: ``ic-fem``,
+``ic-analytic``, ``fem-analytic``), sweep point and output step present in both, fields
+are interpolated onto common sample points — per axis, the coarser of the two grids'
+coordinates inside their overlap — and reduced to the metrics of
+:mod:`reports.tolerances`.  Quantities missing from either solver, or zero in both, are
+skipped; a NaN metric fails.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+from scipy.interpolate import RegularGridInterpolator
+
+from cases.model import Case
+from cases.result import RunResult, StepResult
+
+from . import tolerances as tol
+from .scales import hertz_scales
+
+METRICS_COLUMNS = ["quantity", "pair", "metric", "value", "tolerance", "passed"]
+EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key"]
+_TINY = 1e-12
+
+
+def step_number(step: StepResult, index: int) -> int:
+    """The output step number of a step (its ``step`` scalar, else its position)."""
+    value = step.scalars.get("step")
+    if value is None or not math.isfinite(float(value)):
+        return index
+    return int(value)
+
+
+def pairs(solvers: Sequence[str]) -> list[tuple[str, str]]:
+    """All pairs in the given order; the second solver of a pair is its reference."""
+    return list(itertools.combinations(solvers, 2))
+
+
+# ------------------------------------------------------------------ sampling
+
+
+def _spacing(coords: np.ndarray) -> float:
+    coords = np.asarray(coords, dtype=float)
+    return float(np.max(np.diff(coords))) if coords.size > 1 else 0.0
+
+
+def common_axis(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The coarser of two sorted coordinate vectors, restricted to their overlap."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    lo, hi = max(a.min(), b.min()), min(a.max(), b.max())
+    eps = 1e-9 * max(a.max() - a.min(), b.max() - b.min(), 1.0)
+    coarse = a if a.size <= b.size else b
+    return coarse[(coarse >= lo - eps) & (coarse <= hi + eps)]
+
+
+def sample(axes: Sequence[np.ndarray], values: np.ndarray,
+           at: Sequence[np.ndarray]) -> np.ndarray:
+    """Linear interpolation of a field on a regular grid at the tensor points ``at``.
+
+    An axis with a single coordinate (a field known on one line only) is matched
+    exactly: samples off that line are NaN.  Samples outside the grid are NaN.
+    """
+    axes = [np.asarray(ax, dtype=float) for ax in axes]
+    at = [np.asarray(q, dtype=float) for q in at]
+    values = np.asarray(values, dtype=float)
+    shape = tuple(q.size for q in at)
+    mask = np.ones(shape, dtype=bool)
+    single = [dim for dim, ax in enumerate(axes) if ax.size == 1]
+    for dim in single:
+        ok = np.isclose(at[dim], axes[dim][0], rtol=0.0,
+                        atol=1e-9 * max(1.0, abs(axes[dim][0])))
+        mask &= ok.reshape([-1 if d == dim else 1 for d in range(len(at))])
+    keep = [dim for dim in range(len(axes)) if dim not in single]
+    reduced = values.reshape([axes[d].size for d in keep]) if keep else values.reshape(())
+    if keep:
+        interp = RegularGridInterpolator([axes[d] for d in keep], reduced, method="linear",
+                                         bounds_error=False, fill_value=np.nan)
+        mesh = np.meshgrid(*[at[d] for d in keep], indexing="ij")
+        part = interp(np.stack([m.ravel() for m in mesh], axis=-1))
+        part = part.reshape([at[d].size if d in keep else 1 for d in range(len(at))])
+    else:
+        part = reduced.reshape([1] * len(at))
+    out = np.broadcast_to(part, shape).copy()
+    out[~mask] = np.nan
+    return out
+
+
+def field_errors(fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
+                 scale: float) -> dict[str, float] | None:
+    """Relative L2 and max errors of ``fa`` against ``fb`` on ``mask`` (None: skip).
+
+    Points where either field is NaN are ignored; with no such point left, or both
+    fields zero (below 1e-12 ``scale``), there is nothing to compare.  A reference
+    that is zero while the other field is not is normalised by ``scale``.
+    """
+    ok = np.isfinite(fa) & np.isfinite(fb)
+    if mask is not None:
+        ok &= mask
+    if not ok.any():
+        return None
+    a, b = fa[ok], fb[ok]
+    tiny = _TINY * scale
+    if np.max(np.abs(a)) <= tiny and np.max(np.abs(b)) <= tiny:
+        return None
+    diff = a - b
+    l2_ref = max(float(np.linalg.norm(b)), tiny * math.sqrt(b.size), _TINY)
+    max_ref = max(float(np.max(np.abs(b))), tiny, _TINY)
+    if np.max(np.abs(b)) <= tiny:  # reference identically zero: normalise by the scale
+        l2_ref, max_ref = scale * math.sqrt(b.size), scale
+    return {"l2": float(np.linalg.norm(diff)) / l2_ref,
+            "max": float(np.max(np.abs(diff))) / max_ref}
+
+
+# ------------------------------------------------------------------ per step
+
+
+def _scalar(step: StepResult, key: str) -> float:
+    value = step.scalars.get(key)
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        return math.nan
+    return value
+
+
+def _vm_location(step: StepResult) -> tuple[float, float, float, float]:
+    """(vm_max, x, y, z) from the scalars, else from the planes."""
+    keys = ("vm_max", "vm_max_x", "vm_max_y", "vm_max_z")
+    vals = tuple(_scalar(step, k) for k in keys)
+    if all(math.isfinite(v) for v in vals):
+        return vals  # type: ignore[return-value]
+    best = (math.nan,) * 4
+    for name, plane in step.planes.items():
+        if "vm" not in plane.fields:
+            continue
+        vm, s, z = plane.vm_max()
+        if not math.isfinite(best[0]) or vm > best[0]:
+            x0 = float(step.scalars.get("x0", 0.0))
+            y0 = float(step.scalars.get("y0", 0.0))
+            best = (vm, s, y0, z) if name == "xz" else (vm, x0, s, z)
+    return best
+
+
+def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float
+                  ) -> list[tuple[str, str, float]]:
+    """Metric rows (quantity, metric, value) of step ``sa`` against reference ``sb``."""
+    rows: list[tuple[str, str, float]] = []
+    hx = max(_spacing(sa.x), _spacing(sb.x))
+    hy = max(_spacing(sa.y), _spacing(sb.y))
+    h = max(hx, hy)
+
+    # surface fields on the contact common to both solvers
+    if sa.surface and sb.surface and "p_n" in sa.surface and "p_n" in sb.surface:
+        xs, ys = common_axis(sa.x, sb.x), common_axis(sa.y, sb.y)
+        if xs.size and ys.size:
+            pa = sample((sa.x, sa.y), sa.surface["p_n"], (xs, ys))
+            pb = sample((sb.x, sb.y), sb.surface["p_n"], (xs, ys))
+            contact = (pa > 0) & (pb > 0)
+            for q in tol.SURFACE_FIELDS:
+                if q not in sa.surface or q not in sb.surface:
+                    continue
+                scale = p0 if q.startswith("p_") else a0
+                fa = pa if q == "p_n" else sample((sa.x, sa.y), sa.surface[q], (xs, ys))
+                fb = pb if q == "p_n" else sample((sb.x, sb.y), sb.surface[q], (xs, ys))
+                err = field_errors(fa, fb, contact, scale)
+                if err is not None:
+                    rows += [(q, m, err[m]) for m in tol.METRICS[q]]
+
+    # subsurface σ_VM planes
+    hz = 0.0
+    for q, name in tol.PLANE_FIELDS.items():
+        pa_, pb_ = sa.planes.get(name), sb.planes.get(name)
+        if pa_ is None or pb_ is None or "vm" not in pa_.fields or "vm" not in pb_.fields:
+            continue
+        hz = max(hz, _spacing(pa_.z), _spacing(pb_.z))
+        ss, zs = common_axis(pa_.s, pb_.s), common_axis(pa_.z, pb_.z)
+        if not (ss.size and zs.size):
+            continue
+        fa = sample((pa_.s, pa_.z), pa_.fields["vm"], (ss, zs))
+        fb = sample((pb_.s, pb_.z), pb_.fields["vm"], (ss, zs))
+        err = field_errors(fa, fb, None, p0)
+        if err is not None:
+            rows += [(q, m, err[m]) for m in tol.METRICS[q]]
+
+    # scalars
+    scale_of = {"p_max": p0, "vm_max": p0, "w_max": a0, "wear_volume": a0**3}
+    for q in tol.REL_SCALARS:
+        a, b = _scalar(sa, q), _scalar(sb, q)
+        if q == "vm_max":
+            a, b = _vm_location(sa)[0], _vm_location(sb)[0]
+        if math.isnan(a) and math.isnan(b):
+            continue
+        tiny = _TINY * scale_of[q]
+        if abs(a) <= tiny and abs(b) <= tiny:
+            continue
+        rows.append((q, "rel", abs(a - b) / abs(b) if abs(b) > tiny else math.inf))
+    for q, cell in (("a_x", hx), ("a_y", hy)):
+        a, b = _scalar(sa, q), _scalar(sb, q)
+        if not (math.isnan(a) and math.isnan(b)) and cell > 0:
+            rows.append((q, "cells", abs(a - b) / cell))
+    for q in tol.AREA_SCALARS:
+        a, b = _scalar(sa, q), _scalar(sb, q)
+        if (math.isnan(a) and math.isnan(b)) or h <= 0:
+            continue
+        if abs(a) <= _TINY * a0**2 and abs(b) <= _TINY * a0**2:
+            continue
+        ra = math.sqrt(max(a, 0.0) / math.pi) if math.isfinite(a) else math.nan
+        rb = math.sqrt(max(b, 0.0) / math.pi) if math.isfinite(b) else math.nan
+        rows.append((q, "cells", abs(ra - rb) / h))
+
+    la, lb = _vm_location(sa), _vm_location(sb)
+    if not (math.isnan(la[0]) and math.isnan(lb[0])):
+        d = np.subtract(la[1:], lb[1:])
+        cells = np.array([hx, hy, hz if hz > 0 else h])
+        cells[cells <= 0] = h if h > 0 else 1.0
+        rows.append(("vm_max_loc", "cells", float(np.linalg.norm(d / cells))))
+        rows.append(("vm_max_loc", "a0", float(np.linalg.norm(d)) / a0))
+    return rows
+
+
+# ------------------------------------------------------------------ per case
+
+
+def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
+    """metrics.csv rows for one sweep point: every pair, every common output step."""
+    a0, p0 = hertz_scales(case)
+    records = []
+    for sa_name, sb_name in pairs(list(results)):
+        pair = f"{sa_name}-{sb_name}"
+        steps_a = {step_number(s, i): s for i, s in enumerate(results[sa_name].steps)}
+        steps_b = {step_number(s, i): s for i, s in enumerate(results[sb_name].steps)}
+        for n in sorted(set(steps_a) & set(steps_b)):
+            sa, sb = steps_a[n], steps_b[n]
+            for quantity, metric, value in compare_steps(sa, sb, a0=a0, p0=p0):
+                limit, key = tol.tolerance(case, pair, quantity, metric)
+                records.append({
+                    "quantity": quantity, "pair": pair, "metric": metric, "value": value,
+                    "tolerance": limit, "case": case.name, "param": case.param, "step": n,
+                    "s": _scalar(sb, "s"), "cycle": _scalar(sb, "cycle"),
+                    "tolerance_key": key,
+                })
+    frame = pd.DataFrame.from_records(records, columns=METRICS_COLUMNS + EXTRA_COLUMNS)
+    return finish(frame)
+
+
+def finish(frame: pd.DataFrame) -> pd.DataFrame:
+    """Recompute ``passed`` (a NaN value fails) and fix the column order."""
+    frame = frame.copy()
+    frame["passed"] = (frame["value"] <= frame["tolerance"]).astype(bool)
+    extra = [c for c in frame.columns if c not in METRICS_COLUMNS]
+    return frame[METRICS_COLUMNS + extra].reset_index(drop=True)

@@ -1,0 +1,75 @@
+"""``contact-vv gate``: print the metrics table; fail on any failed metric, non-converged
+run or incomplete case, naming each."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+
+from .errors import UserError
+from .results import Scan, not_converged, scan
+
+_SHOW = ["case", "param", "step", "pair", "quantity", "metric", "value", "tolerance",
+         "passed", "tolerance_key"]
+
+
+def metrics_table(results: Scan) -> pd.DataFrame:
+    """All cases' metrics in one table (case, param, step, pair, quantity, ...)."""
+    frames = [c.metrics.assign(case=c.name) for c in results.complete if not c.metrics.empty]
+    if not frames:
+        return pd.DataFrame(columns=_SHOW)
+    table = pd.concat(frames, ignore_index=True)
+    return table[[c for c in _SHOW if c in table.columns]]
+
+
+def _where(case: str, param: object, step: object) -> str:
+    param = "" if pd.isna(param) else str(param)
+    return case + (f" [{param}]" if param else "") + (
+        f" step {int(step)}" if not pd.isna(step) else "")
+
+
+def problems(results: Scan) -> list[str]:
+    """One line per failed metric, non-converged run and incomplete case."""
+    lines = []
+    table = metrics_table(results)
+    if not table.empty:
+        failed = table[~table["passed"].astype(str).str.lower().isin(["true", "1"])]
+        for r in failed.itertuples(index=False):
+            key = getattr(r, "tolerance_key", "")
+            lines.append(
+                f"FAIL {_where(r.case, r.param, r.step)} {r.pair} {r.quantity} {r.metric} = "
+                f"{r.value:.4g} > tolerance {r.tolerance:.4g}"
+                + (f" (tolerance key {key})" if isinstance(key, str) and key else ""))
+    for case in results.complete:
+        for r in not_converged(case.summary).itertuples(index=False):
+            lines.append(f"NOT CONVERGED {_where(case.name, r.param, r.step)} "
+                         f"solver {r.solver}")
+    for name, reason in results.incomplete.items():
+        lines.append(f"INCOMPLETE {name}: {reason}")
+    return lines
+
+
+def run_gate(out: Path, *, stream=None) -> int:
+    """Print the table and the problems; 0 if none, 1 otherwise."""
+    import sys
+
+    stream = stream or sys.stdout
+    results = scan(out)
+    if not results.complete and not results.incomplete:
+        raise UserError(f"no results in {out} (run `contact-vv run` first)")
+    table = metrics_table(results)
+    with pd.option_context("display.max_rows", None, "display.width", 200,
+                           "display.max_colwidth", 40):
+        print(table.to_string(index=False) if not table.empty else "(no metrics)", file=stream)
+    found = problems(results)
+    for case in results.complete:
+        for solver, reason in case.manifest.get("skipped", {}).items():
+            print(f"note: {case.name}: solver {solver} not run ({reason})", file=stream)
+    n_ok = int(table["passed"].astype(str).str.lower().isin(["true", "1"]).sum()) \
+        if not table.empty else 0
+    print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table)} metric(s) passed, "
+          f"{len(found)} problem(s)", file=stream)
+    for line in found:
+        print(line, file=stream)
+    return 1 if found else 0

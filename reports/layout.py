@@ -1,0 +1,65 @@
+"""Where a run puts its files: the output layout of ``DIR/<case>/``.
+
+::
+
+    DIR/<case>/manifest.json                      written last: the run is complete
+    DIR/<case>/summary.csv                        one row per (solver, param, step)
+    DIR/<case>/metrics.csv                        one row per compared quantity
+    DIR/<case>/fields/<solver>/<param>/step_NNNN.npz   surface fields and planes
+    DIR/<case>/fields/<solver>/<param>/step_NNNN.vtu   FEM meshes (ParaView)
+    DIR/<case>/fields/<solver>/<param>/<table>.csv     tables (e.g. fretting loops)
+    DIR/.<case>.partial/                          staging area of a run in progress
+
+``<param>`` is the sweep label (``mu=0.25``) or ``base`` for a case without a sweep.
+A run writes into the staging directory and renames it to ``DIR/<case>`` only after the
+manifest is written, so a case directory is either complete or absent.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+MANIFEST = "manifest.json"
+SUMMARY = "summary.csv"
+METRICS = "metrics.csv"
+FIELDS = "fields"
+PARTIAL_SUFFIX = ".partial"
+FAILED = "failed.json"
+
+_UNSAFE = re.compile(r"[^A-Za-z0-9._=+-]")
+
+
+def safe_name(text: str) -> str:
+    """A file-name-safe form of a case name or sweep label."""
+    return _UNSAFE.sub("_", text) or "_"
+
+
+def param_dir(param: str) -> str:
+    """Directory name of one sweep point: the label, or ``base`` without a sweep."""
+    return safe_name(param) if param else "base"
+
+
+def case_dir(out: Path, case: str) -> Path:
+    return Path(out) / safe_name(case)
+
+
+def staging_dir(out: Path, case: str) -> Path:
+    return Path(out) / f".{safe_name(case)}{PARTIAL_SUFFIX}"
+
+
+def unit_dir(root: Path, solver: str, param: str) -> Path:
+    """Field directory of one (solver, sweep point) under a case or staging directory."""
+    return Path(root) / FIELDS / safe_name(solver) / param_dir(param)
+
+
+def step_file(root: Path, solver: str, param: str, step: int, ext: str = "npz") -> Path:
+    return unit_dir(root, solver, param) / f"step_{int(step):04d}.{ext}"
+
+
+def partial_case_name(path: Path) -> str | None:
+    """The case name of a staging directory, or None if ``path`` is not one."""
+    name = Path(path).name
+    if name.startswith(".") and name.endswith(PARTIAL_SUFFIX):
+        return name[1 : -len(PARTIAL_SUFFIX)]
+    return None

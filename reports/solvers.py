@@ -1,0 +1,84 @@
+"""The solver registry: names -> lazily imported entry points ``solve(case, progress)``.
+
+Solvers are resolved only when used, so a solver whose package has not landed (or fails
+to import) is reported as unavailable without breaking the others.  Each entry point
+takes a :class:`cases.model.Case` and returns a :class:`cases.result.RunResult`.
+"""
+
+from __future__ import annotations
+
+import importlib
+from collections.abc import Callable
+
+from cases.model import Case
+from cases.result import RunResult
+
+from .errors import SolverUnavailable
+
+SolveFn = Callable[..., RunResult]
+
+#: solver name -> "module:function"; the order is the order of columns, rows and pairs.
+REGISTRY: dict[str, str] = {
+    "ic": "halfspace:solve",
+    "fem": "fem_reference:solve",
+    "analytic": "cases.analytic.solver:solve",
+}
+
+#: solver name -> "module:function" deciding whether the solver applies to a case.
+APPLICABLE: dict[str, str] = {
+    "analytic": "cases.analytic.solver:has_solution",
+}
+
+
+def _import(target: str) -> Callable:
+    module_name, _, attr = target.partition(":")
+    try:
+        module = importlib.import_module(module_name)
+    except ImportError as exc:
+        raise SolverUnavailable(f"cannot import {module_name} ({exc})") from None
+    fn = getattr(module, attr, None)
+    if not callable(fn):
+        raise SolverUnavailable(f"{module_name} has no entry point {attr}()")
+    return fn
+
+
+def names() -> list[str]:
+    """All registered solver names, in registry order."""
+    return list(REGISTRY)
+
+
+def resolve(name: str) -> SolveFn:
+    """The entry point of solver ``name``; :class:`SolverUnavailable` if it cannot load."""
+    if name not in REGISTRY:
+        raise SolverUnavailable(
+            f"unknown solver {name!r} (known: {', '.join(REGISTRY)})"
+        )
+    try:
+        return _import(REGISTRY[name])
+    except SolverUnavailable as exc:
+        raise SolverUnavailable(f"solver {name!r} is not available: {exc}") from None
+
+
+def available(name: str) -> tuple[bool, str]:
+    """(True, '') if solver ``name`` loads, else (False, reason)."""
+    try:
+        resolve(name)
+    except SolverUnavailable as exc:
+        return False, str(exc)
+    return True, ""
+
+
+def applies(name: str, case: Case) -> bool:
+    """Whether solver ``name`` has anything to say about ``case`` (e.g. an analytic solution).
+
+    A solver without an applicability test applies to every case; a solver whose test
+    cannot be imported does not apply.
+    """
+    target = APPLICABLE.get(name)
+    if target is None:
+        return True
+    try:
+        fn = _import(target)
+    except SolverUnavailable:
+        return False
+    return bool(fn(case))

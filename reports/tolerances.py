@@ -1,0 +1,142 @@
+"""Compared quantities, their metrics, the tolerance naming scheme and the defaults.
+
+Naming scheme (documented in ``cases/README.md``):
+
+================  ==================  ===================================================
+quantity          metrics             meaning
+================  ==================  ===================================================
+p_n, p_x, p_y     l2, max             surface tractions over the contact (where both
+wear_a, wear_b                        solvers have p_n > 0) and wear depths of body a / b
+vm_xz, vm_yz      l2, max             σ_VM on the xz / yz plane through the load centre
+p_max, w_max,     rel                 scalars of ``summary.csv``
+wear_volume,
+vm_max
+a_x, a_y          cells               contact semi-widths through the centre
+contact_area,     cells               equivalent radius √(A/π) of the contact / stick zone
+stick_area
+vm_max_loc        cells, a0           distance between the σ_VM maxima
+================  ==================  ===================================================
+
+Metrics, with A the first and B the second (reference) solver of the pair:
+``l2`` = ‖A − B‖₂ / ‖B‖₂ and ``max`` = max|A − B| / max|B| on common sample points;
+``rel`` = |A − B| / |B|; ``cells`` = a length difference in units of the coarser of the
+two solvers' cell sizes; ``a0`` = a length difference in units of the Hertz radius.
+
+Tolerance keys: the quantity name for a single-metric quantity (``p_max``, ``a_x``), else
+``<quantity>_<metric>`` (``p_n_l2``, ``vm_xz_max``, ``vm_max_loc_cells``); prefixed with a
+pair and a dot (``"ic-fem.p_max"``, a quoted TOML key) it applies to that pair only.
+Lookup order: pair-specific key in the case, plain key in the case, default of the pair.
+
+Defaults.  Each solver has an *error budget* per metric: the error it is expected to make
+against the exact solution at the resolution the bundled cases use (quick grids included);
+the default tolerance of a pair is the sum of its two budgets, because by the triangle
+inequality |A − B| ≤ |A − exact| + |B − exact|.  The budgets:
+
+- ``ic`` (piecewise-constant tractions on cells; the quick grids resolve a0 with ≈ 4
+  cells): a peak value is a cell average, ≈ (h/a)²/12 below the point value (0.6 % at
+  h/a = 0.27) plus the global discretisation error: 3 % for peak pressure and wear, 2 % for
+  σ_VM,max (an integral of the tractions, smoother than them).  Field norms include the
+  cells next to the contact edge, where p ∝ √(a − r) changes by O(√(h/a)) over one cell:
+  5 % in L2 and 10 % in the max norm for tractions and wear, 3 % / 8 % for σ_VM planes.
+  Lengths are quantised to cells: semi-widths and the equivalent contact radius are good
+  to one cell, the stick-zone radius to 1.5 cells (it also depends on the slip
+  threshold), the σ_VM maximum (a broad maximum sampled on a lattice) to 1.5 cells or
+  0.1 a0.
+- ``fem`` (P2 elements, h ≈ a0/8 in the contact, finite block 20 a0, penalty
+  100 E*/h; ``shared/notes/fem-feasibility.md`` measured p_max within 0.4 % and σ_VM,max
+  within 0.3 % on such meshes): the same budgets as ``ic`` except 5 % for wear quantities
+  (penalty contact and the block's compliance act on the wear increments).
+- ``analytic`` (closed forms or converged quadrature, sampled on the solver's grid):
+  0.5 % for scalars, 1 % / 2 % for field norms, 0.5 cell for lengths read off a grid.
+
+Any other solver name gets the ``ic`` budgets.
+"""
+
+from __future__ import annotations
+
+import math
+
+from cases.model import Case, CaseError
+
+SURFACE_FIELDS = ("p_n", "p_x", "p_y", "wear_a", "wear_b")
+PLANE_FIELDS = {"vm_xz": "xz", "vm_yz": "yz"}
+REL_SCALARS = ("p_max", "w_max", "wear_volume", "vm_max")
+LENGTH_SCALARS = ("a_x", "a_y")
+AREA_SCALARS = ("contact_area", "stick_area")
+
+#: quantity -> its metrics, in the order rows are written.
+METRICS: dict[str, tuple[str, ...]] = {
+    **{q: ("l2", "max") for q in SURFACE_FIELDS},
+    **{q: ("l2", "max") for q in PLANE_FIELDS},
+    **{q: ("rel",) for q in REL_SCALARS},
+    **{q: ("cells",) for q in LENGTH_SCALARS + AREA_SCALARS},
+    "vm_max_loc": ("cells", "a0"),
+}
+
+_WEAR = ("wear_a", "wear_b", "w_max", "wear_volume")
+
+
+def tolerance_key(quantity: str, metric: str) -> str:
+    """The tolerance key of a (quantity, metric): bare for single-metric quantities."""
+    return quantity if len(METRICS[quantity]) == 1 else f"{quantity}_{metric}"
+
+
+#: every valid (pair-less) tolerance key -> (quantity, metric)
+KEYS: dict[str, tuple[str, str]] = {
+    tolerance_key(q, m): (q, m) for q, ms in METRICS.items() for m in ms
+}
+
+
+def _budget_ic(quantity: str, metric: str) -> float:
+    if metric == "rel":
+        return 0.02 if quantity == "vm_max" else 0.03
+    if metric in ("l2", "max"):
+        if quantity in PLANE_FIELDS:
+            return 0.03 if metric == "l2" else 0.08
+        return 0.05 if metric == "l2" else 0.10
+    if metric == "cells":
+        return 1.5 if quantity in ("stick_area", "vm_max_loc") else 1.0
+    return 0.1  # a0
+
+
+def budget(solver: str, quantity: str, metric: str) -> float:
+    """Expected error of one solver against the exact solution (see the module doc)."""
+    if solver == "analytic":
+        return {"rel": 0.005, "l2": 0.01, "max": 0.02, "cells": 0.5, "a0": 0.02}[metric]
+    value = _budget_ic(quantity, metric)
+    if solver == "fem" and quantity in _WEAR and metric in ("rel", "l2"):
+        value = 0.05
+    return value
+
+
+def default_tolerance(pair: str, quantity: str, metric: str) -> float:
+    """Default tolerance of a pair ``"A-B"``: the sum of the two solvers' budgets."""
+    a, _, b = pair.partition("-")
+    return budget(a, quantity, metric) + budget(b, quantity, metric)
+
+
+def tolerance(case: Case, pair: str, quantity: str, metric: str) -> tuple[float, str]:
+    """(tolerance, the key it came from) for one metric of one pair of a case."""
+    key = tolerance_key(quantity, metric)
+    for candidate in (f"{pair}.{key}", key):
+        if candidate in case.tolerances:
+            return case.tolerances[candidate], candidate
+    return default_tolerance(pair, quantity, metric), f"default:{key}"
+
+
+def check_keys(case: Case, solver_names: list[str]) -> None:
+    """Refuse tolerance keys that name no quantity, metric or pair (typos would be ignored)."""
+    for raw in case.tolerances:
+        pair, dot, key = raw.rpartition(".")
+        if key not in KEYS:
+            known = ", ".join(sorted(KEYS))
+            raise CaseError(f"tolerances.{raw}: unknown tolerance key {key!r} (known: {known})")
+        if dot:
+            a, dash, b = pair.partition("-")
+            if not dash or a not in solver_names or b not in solver_names or a == b:
+                raise CaseError(
+                    f"tolerances.{raw}: {pair!r} is not a solver pair "
+                    f"(write e.g. \"ic-fem.{key}\")"
+                )
+        if not math.isfinite(case.tolerances[raw]):
+            raise CaseError(f"tolerances.{raw}: must be finite")

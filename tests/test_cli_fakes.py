@@ -1,0 +1,121 @@
+"""Fake solvers for the reports/CLI tests (no tests here).
+
+``solve_exact`` returns the Hertz solution sampled on the case grid with a synthetic
+σ_VM field; ``solve_ic`` returns the same scaled by ``1 + ERROR``, so every relative
+metric of the pair ic-analytic is exactly ``ERROR`` and every length metric zero.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+
+import numpy as np
+
+from cases.model import Case, CaseError
+from cases.result import Plane, RunResult, StepResult, von_mises
+from reports.scales import hertz_scales
+
+ERROR = 0.02  # relative error of the fake "ic" solver
+N_STEPS = 3  # output steps of a sliding_wear case
+
+
+def hertz_step(case: Case, scale: float, k: int) -> StepResult:
+    a0, p0 = hertz_scales(case)
+    x, y = case.grid.x, case.grid.y
+    r2 = x[:, None] ** 2 + y[None, :] ** 2
+    p = scale * p0 * np.sqrt(np.clip(1.0 - r2 / a0**2, 0.0, None))
+    mu = case.friction.mu1
+    wear = scale * 1e-4 * k * p / p0
+    surface = {
+        "p_n": p, "p_x": mu * p, "p_y": np.zeros_like(p), "gap": np.where(p > 0, 0.0, 1e-4),
+        "slip_x": np.zeros_like(p), "slip_y": np.zeros_like(p), "wear_a": wear,
+        "wear_b": np.zeros_like(p), "state": np.where(p > 0, 2, 0),
+    }
+    z = case.stress.z
+    planes = {}
+    for name, s in (("xz", x), ("yz", y)):
+        S, Z = np.meshgrid(s / a0, z / a0, indexing="ij")
+        szz = -scale * p0 * np.exp(-(S**2) - (Z - 0.48) ** 2)
+        zeros = np.zeros_like(szz)
+        f = {"sxx": 0.5 * szz, "syy": 0.5 * szz, "szz": szz, "sxy": zeros, "sxz": zeros,
+             "syz": zeros}
+        f["vm"] = von_mises(**f)
+        planes[name] = Plane(s=s, z=z, fields=f)
+    vm, sx, sz = planes["xz"].vm_max()
+    dx, dy = case.grid.dx, case.grid.dy
+    inside = p > 0
+    step_len = case.sliding_wear.step if case.sliding_wear else 0.0
+    scalars = {
+        "step": k, "s": k * step_len if case.sliding_wear else math.nan,
+        "P": float(p.sum() * dx * dy), "contact_area": float(inside.sum() * dx * dy),
+        "a_x": float(np.abs(x[inside.any(axis=1)]).max() + dx / 2),
+        "a_y": float(np.abs(y[inside.any(axis=0)]).max() + dy / 2),
+        "p_max": float(p.max()), "w_max": float(wear.max()),
+        "wear_volume": float(wear.sum() * dx * dy), "vm_max": vm, "vm_max_x": sx,
+        "vm_max_y": 0.0, "vm_max_z": sz, "iterations": 7, "converged": True,
+        "wall_s": 0.001,
+    }
+    return StepResult(scalars=scalars, x=x, y=y, surface=surface, planes=planes)
+
+
+def _result(case: Case, solver: str, scale: float) -> RunResult:
+    n = N_STEPS if case.kind == "sliding_wear" else 1
+    steps = [hertz_step(case, scale, k) for k in range(n)]
+    tables = {}
+    if case.kind == "sliding_wear":
+        d = np.linspace(-1.0, 1.0, 9)
+        tables["fretting_loop"] = {"shift_x": d, "Qx": scale * np.tanh(3 * d)}
+    return RunResult(case=case.name, solver=solver, param=case.param, steps=steps,
+                     meta={"note": "fake"}, tables=tables)
+
+
+def solve_exact(case: Case, progress: bool = False) -> RunResult:
+    return _result(case, "analytic", 1.0)
+
+
+def solve_ic(case: Case, progress: bool = False) -> RunResult:
+    return _result(case, "ic", 1.0 + ERROR)
+
+
+def solve_slow(case: Case, progress: bool = False) -> RunResult:
+    """The fake ic, after a pause (for interruption tests)."""
+    time.sleep(float(os.environ.get("FAKE_SLEEP", "0.5")))
+    return solve_ic(case, progress)
+
+
+class NotConverged(RuntimeError):
+    pass
+
+
+def solve_diverging(case: Case, progress: bool = False) -> RunResult:
+    raise NotConverged("Uzawa iteration did not converge: residual 3.2e-04 > tol 1e-10 "
+                       "after 20000 iterations")
+
+
+def solve_edge(case: Case, progress: bool = False) -> RunResult:
+    raise CaseError("the contact area reaches the edge of the potential contact grid "
+                    "(grid.Lx, grid.Ly too small)")
+
+
+def solve_nan(case: Case, progress: bool = False) -> RunResult:
+    result = solve_ic(case)
+    result.steps[0].surface["p_n"][0, 0] = np.nan
+    return result
+
+
+def has_solution(case: Case) -> bool:
+    return case.friction.mu1 < 0.5
+
+
+def use(monkeypatch, **targets: str) -> None:
+    """Point the registry at fakes, e.g. ``use(mp, ic="solve_ic", analytic="solve_exact")``;
+    solvers not named are made unavailable."""
+    from reports import solvers
+
+    for name in list(solvers.REGISTRY):
+        monkeypatch.setitem(solvers.REGISTRY, name, "no_such_module_xyz:solve")
+    for name, fn in targets.items():
+        monkeypatch.setitem(solvers.REGISTRY, name, f"{__name__}:{fn}")
+    monkeypatch.setitem(solvers.APPLICABLE, "analytic", f"{__name__}:has_solution")

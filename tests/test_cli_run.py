@@ -1,0 +1,225 @@
+"""`contact-vv run` and `gate` on fake solvers: layout, summary, manifest, exit codes."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+import test_cli_fakes as fakes
+
+from cases.result import SUMMARY_COLUMNS, load_step
+from reports import layout, manifest
+from reports.cli import main
+from reports.results import scan
+
+HERTZ = """\
+description = "small Hertz for tests"
+kind = "static"
+[materials.a]
+E = 210000.0
+nu = 0.3
+[materials.b]
+E = 210000.0
+nu = 0.3
+[geometry]
+R = 50.0
+[grid]
+Lx = 1.6
+nx = 21
+[load]
+P = 10.2
+[stress]
+depth = 0.3
+nz = 11
+"""
+
+SWEEP = HERTZ.replace('kind = "static"', 'kind = "static"\n[friction]\nmu = 0.3') + """\
+[sweep]
+key = "friction.mu"
+label = "mu"
+values = [0.25, 0.6]
+"""
+
+
+def write_case(tmp_path: Path, text: str = HERTZ, name: str = "small") -> Path:
+    path = tmp_path / f"{name}.toml"
+    path.write_text(text)
+    return path
+
+
+@pytest.fixture
+def fake(monkeypatch):
+    fakes.use(monkeypatch, ic="solve_ic", analytic="solve_exact")
+
+
+def run(*argv: str) -> int:
+    return main(["run", "--no-progress", *argv])
+
+
+def test_run_writes_the_contract_layout(tmp_path, fake):
+    case = write_case(tmp_path)
+    out = tmp_path / "res"
+    assert run(str(case), "--out", str(out)) == 0
+    root = out / "small"
+    assert sorted(p.name for p in root.iterdir()) == ["fields", "manifest.json", "metrics.csv",
+                                                      "summary.csv"]
+    summary = pd.read_csv(root / "summary.csv")
+    assert list(summary.columns[: len(SUMMARY_COLUMNS)]) == SUMMARY_COLUMNS
+    assert list(summary["solver"]) == ["ic", "analytic"]  # registry order
+    assert summary["param"].isna().all()  # blank: not a sweep
+    # the fake ic is the exact Hertz pressure scaled by 1.02
+    ratio = summary.loc[0, "p_max"] / summary.loc[1, "p_max"]
+    assert ratio == pytest.approx(1 + fakes.ERROR, rel=1e-12)
+    step = load_step(root / "fields" / "ic" / "base" / "step_0000.npz")
+    assert step.surface["p_n"].shape == (21, 21)
+    assert set(step.planes) == {"xz", "yz"}
+
+    mf = manifest.read(root)  # verifies every file hash
+    assert mf["case"] == "small" and mf["solvers"] == ["ic", "analytic"]
+    assert mf["case_sha256"] == manifest.sha256_file(case)
+    assert "fem" in mf["skipped"]  # unavailable, skipped with its reason
+    prov = mf["provenance"]
+    assert {"date", "git", "versions", "threads"} <= set(prov)
+    assert prov["versions"]["numpy"] == np.__version__
+    assert {"fields/ic/base/step_0000.npz", "summary.csv", "metrics.csv"} <= set(mf["files"])
+    assert not layout.staging_dir(out, "small").exists()
+
+
+def test_metrics_of_the_fake_pair_are_exact(tmp_path, fake):
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path)), "--out", str(out)) == 0
+    m = pd.read_csv(out / "small" / "metrics.csv")
+    assert list(m.columns[:6]) == ["quantity", "pair", "metric", "value", "tolerance", "passed"]
+    assert set(m["pair"]) == {"ic-analytic"}
+    v = m.set_index(["quantity", "metric"])["value"]
+    # every field/scalar of the fake ic is 1.02 x the reference: relative errors are 0.02
+    for key in [("p_n", "l2"), ("p_n", "max"), ("p_x", "l2"), ("p_max", "rel"),
+                ("vm_xz", "l2"), ("vm_yz", "max"), ("vm_max", "rel")]:
+        if key[0] == "p_x":
+            continue  # frictionless: p_x is zero in both, so not compared
+        assert v[key] == pytest.approx(fakes.ERROR, rel=1e-9), key
+    assert ("p_x", "l2") not in v.index
+    # lengths are identical: zero cells apart
+    for key in [("a_x", "cells"), ("contact_area", "cells"), ("vm_max_loc", "cells")]:
+        assert v[key] == pytest.approx(0.0, abs=1e-12), key
+    assert m["passed"].all()
+
+
+def test_sweep_points_get_param_rows_and_directories(tmp_path, fake):
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path, SWEEP)), "--out", str(out)) == 0
+    summary = pd.read_csv(out / "small" / "summary.csv")
+    # analytic has no solution for mu >= 0.5 (fake has_solution)
+    assert list(zip(summary["solver"], summary["param"], strict=True)) == [
+        ("ic", "mu=0.25"), ("analytic", "mu=0.25"), ("ic", "mu=0.6")]
+    assert (out / "small" / "fields" / "ic" / "mu=0.6" / "step_0000.npz").is_file()
+    m = pd.read_csv(out / "small" / "metrics.csv")
+    assert set(m["param"]) == {"mu=0.25"}
+    # with friction p_x = mu p is compared too
+    px = m[(m.quantity == "p_x") & (m.metric == "l2")]["value"]
+    assert px.iloc[0] == pytest.approx(fakes.ERROR, rel=1e-9)
+
+
+def test_run_is_deterministic(tmp_path, fake):
+    case = write_case(tmp_path)
+    a, b = tmp_path / "a", tmp_path / "b"
+    assert run(str(case), "--out", str(a)) == 0
+    assert run(str(case), "--out", str(b)) == 0
+    assert (a / "small/metrics.csv").read_bytes() == (b / "small/metrics.csv").read_bytes()
+    sa = pd.read_csv(a / "small/summary.csv").drop(columns="wall_s")
+    sb = pd.read_csv(b / "small/summary.csv").drop(columns="wall_s")
+    pd.testing.assert_frame_equal(sa, sb, check_exact=True)
+
+
+def test_gate_passes_then_fails_on_a_broken_tolerance(tmp_path, fake, capsys):
+    case = write_case(tmp_path)
+    out = tmp_path / "res"
+    assert run(str(case), "--out", str(out)) == 0
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out)]) == 0
+    assert "problem" in capsys.readouterr().out
+    # deliberately broken tolerance: 2 % error against a 1 % tolerance
+    assert run(str(case), "--out", str(out), "--set", "tolerances.p_max=0.01") == 0
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out)]) == 1
+    text = capsys.readouterr().out
+    fails = [line for line in text.splitlines() if line.startswith("FAIL")]
+    assert len(fails) == 1
+    assert "ic-analytic p_max rel = 0.02 > tolerance 0.01" in fails[0]
+    assert "tolerance key p_max" in fails[0]
+
+
+def test_pair_specific_tolerance_key(tmp_path, fake, capsys):
+    text = HERTZ + '[tolerances]\n"ic-analytic.p_n_l2" = 0.015\n'
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path, text)), "--out", str(out)) == 0
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out)]) == 1
+    fails = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("FAIL")]
+    assert [("p_n l2" in f and "ic-analytic.p_n_l2" in f) for f in fails] == [True]
+
+
+def test_non_converged_solver_exits_1_and_leaves_nothing_complete(tmp_path, monkeypatch,
+                                                                 capsys):
+    case = write_case(tmp_path)
+    out = tmp_path / "res"
+    fakes.use(monkeypatch, ic="solve_ic", analytic="solve_exact")
+    assert run(str(case), "--out", str(out)) == 0  # an older complete result ...
+    fakes.use(monkeypatch, ic="solve_diverging", analytic="solve_exact")
+    capsys.readouterr()
+    assert run(str(case), "--out", str(out)) == 1
+    err = capsys.readouterr().err
+    assert "small: solver ic did not converge: Uzawa" in err and "residual 3.2e-04" in err
+    assert "Traceback" not in err
+    assert not (out / "small").exists()  # ... does not outlive the failing run
+    failed = json.loads((layout.staging_dir(out, "small") / "failed.json").read_text())
+    assert "residual 3.2e-04" in failed["failures"][0]
+    assert main(["gate", "--out", str(out)]) == 1
+    lines = capsys.readouterr().out.splitlines()
+    assert any(ln.startswith("INCOMPLETE small: run failed") and "did not converge" in ln
+               for ln in lines)
+
+
+def test_non_finite_fields_fail_the_run(tmp_path, monkeypatch, capsys):
+    fakes.use(monkeypatch, ic="solve_nan")
+    assert run(str(write_case(tmp_path)), "--out", str(tmp_path / "r")) == 1
+    assert "non-finite values in surface p_n" in capsys.readouterr().err
+
+
+def test_not_converged_rows_fail_the_gate(tmp_path, fake, capsys):
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path)), "--out", str(out)) == 0
+    path = out / "small" / "summary.csv"
+    frame = pd.read_csv(path)
+    frame.loc[0, "converged"] = False
+    frame.to_csv(path, index=False)
+    capsys.readouterr()
+    # the edited file no longer matches the manifest: flagged, not trusted
+    assert main(["gate", "--out", str(out)]) == 1
+    assert "summary.csv changed after the run" in capsys.readouterr().out
+    # rewrite the manifest as a run would have: now the row itself fails the gate
+    mf = json.loads((out / "small" / "manifest.json").read_text())
+    manifest.write(out / "small", {k: v for k, v in mf.items() if k != "files"})
+    assert main(["gate", "--out", str(out)]) == 1
+    assert "NOT CONVERGED small step 0 solver ic" in capsys.readouterr().out
+
+
+def test_manifest_missing_means_incomplete(tmp_path, fake):
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path)), "--out", str(out)) == 0
+    (out / "small" / "manifest.json").unlink()
+    found = scan(out)
+    assert not found.complete and "no manifest.json" in found.incomplete["small"]
+
+
+def test_nan_metric_fails():
+    from reports.compare import finish
+
+    frame = pd.DataFrame({"quantity": ["p_max", "p_max"], "pair": ["a-b"] * 2,
+                          "metric": ["rel"] * 2, "value": [math.nan, 0.001],
+                          "tolerance": [0.01, 0.01], "passed": [True, True]})
+    assert list(finish(frame)["passed"]) == [False, True]
