@@ -1,0 +1,317 @@
+"""``contact-vv report``: one self-contained ``DIR/index.html`` (PNG plots inlined as
+base64) with a section per case: tractions, difference maps, σ_VM planes, wear, evolution,
+fretting loops, sweep, metrics coloured by pass/fail, grid convergence and provenance."""
+
+from __future__ import annotations
+
+import base64
+import html
+import math
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from cases.result import atomic_write_text
+
+from . import convergence, plots
+from .gate import metrics_table, problems
+from .results import CaseResults, Scan, not_converged, scan
+
+CSS = """
+body{font-family:system-ui,sans-serif;margin:1.5em;max-width:1400px;color:#222}
+h1{margin-bottom:0}h2{border-bottom:2px solid #446;padding-bottom:.2em;margin-top:2em}
+table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
+td,th{border:1px solid #bbb;padding:.15em .5em;text-align:right}
+th{background:#eef}td.l,th.l{text-align:left}
+tr.pass td{background:#e5f5e5}tr.fail td{background:#fbdcdc;font-weight:600}
+.warn{background:#fff3cd;border:1px solid #e0c060;padding:.5em 1em}
+.bad{color:#a00;font-weight:600}.ok{color:#070;font-weight:600}
+figure{margin:.5em 0}img{max-width:100%}
+.provenance{background:#f6f6f9;border:1px solid #ccd;padding:.5em 1em;font-size:.85em}
+.scroll{max-height:30em;overflow:auto}
+"""
+
+
+def _e(text: Any) -> str:
+    return html.escape(str(text))
+
+
+def _img(png: bytes, alt: str) -> str:
+    data = base64.b64encode(png).decode("ascii")
+    return f'<figure><img alt="{_e(alt)}" src="data:image/png;base64,{data}"></figure>'
+
+
+def _fig(fig, alt: str) -> str:
+    return _img(plots.png(fig), alt) if fig is not None else ""
+
+
+def _fmt(v: Any) -> str:
+    if isinstance(v, float):
+        return "" if math.isnan(v) else f"{v:.4g}"
+    return _e(v)
+
+
+def table_html(frame: pd.DataFrame, *, status: str | None = None, left: int = 0) -> str:
+    """An HTML table; rows coloured by a boolean column ``status`` (pass / fail)."""
+    head = "".join(f'<th class="{"l" if i < left else ""}">{_e(c)}</th>'
+                   for i, c in enumerate(frame.columns))
+    body = []
+    for _, row in frame.iterrows():
+        cls = ""
+        if status is not None:
+            ok = str(row[status]).lower() in ("true", "1")
+            cls = ' class="pass"' if ok else ' class="fail"'
+        cells = "".join(f'<td class="{"l" if i < left else ""}">{_fmt(v)}</td>'
+                        for i, v in enumerate(row.tolist()))
+        body.append(f"<tr{cls}>{cells}</tr>")
+    return f"<table><tr>{head}</tr>{''.join(body)}</table>"
+
+
+def _scales(case: CaseResults) -> dict[str, tuple[float, float]]:
+    return {p.get("param", ""): (float(p.get("hertz_a0", math.nan)),
+                                 float(p.get("hertz_p0", math.nan)))
+            for p in case.manifest.get("points", [])}
+
+
+def _cell_size(point: dict[str, Any], solver: str) -> float:
+    """Representative cell size of a solver at a sweep point [mm] (NaN if unknown)."""
+    try:
+        if solver == "fem":
+            return float(point["fem"]["h"]) * float(point["hertz_a0"])
+        g = point["grid"]
+        return max(g["Lx"] / g["nx"], g["Ly"] / g["ny"])
+    except (KeyError, TypeError, ZeroDivisionError):
+        return math.nan
+
+
+def convergence_frame(case: CaseResults) -> pd.DataFrame:
+    """Observed order and GCI of p_max and σ_VM,max from the three finest grids of every
+    solver whose cell size varies across the sweep points (last output step)."""
+    rows = []
+    summary = case.summary
+    if summary.empty:
+        return pd.DataFrame()
+    last = summary.sort_values("step").groupby(["solver", "param"], sort=False).tail(1)
+    for solver, sub in last.groupby("solver", sort=False):
+        if solver == "analytic":
+            continue
+        h = sub["param"].map(lambda p, s=solver: _cell_size(case.point(p), s))
+        sub = sub.assign(h=h).dropna(subset=["h"]).drop_duplicates("h").sort_values("h")
+        if len(sub) < 3:
+            continue
+        three = sub.head(3)
+        a0, p0 = _scales(case).get(three["param"].iloc[0], (math.nan, math.nan))
+        for q in ("p_max", "vm_max"):
+            f = tuple(float(v) for v in three[q])
+            if not all(math.isfinite(v) for v in f):
+                continue
+            st = convergence.study(f, tuple(float(v) for v in three["h"]))
+            rows.append({
+                "solver": solver, "quantity": q,
+                "h1/a0": st.h[0] / a0, "h2/a0": st.h[1] / a0, "h3/a0": st.h[2] / a0,
+                "f1/p0": st.f[0] / p0, "f2/p0": st.f[1] / p0, "f3/p0": st.f[2] / p0,
+                "order p": st.p, "f_ext/p0": st.f_ext / p0, "GCI21 [%]": 100 * st.gci_fine,
+                "GCI32 [%]": 100 * st.gci_coarse, "GCI32/(r^p GCI21)": st.asymptotic,
+                "converging": st.converging,
+            })
+    return pd.DataFrame(rows)
+
+
+def _worst(metrics: pd.DataFrame) -> pd.DataFrame:
+    """Per (pair, quantity, metric): the worst value over sweep points and steps."""
+    m = metrics.assign(margin=metrics["value"].fillna(math.inf) / metrics["tolerance"])
+    idx = m.groupby(["pair", "quantity", "metric"], sort=False)["margin"].idxmax()
+    worst = m.loc[idx, ["pair", "quantity", "metric", "value", "tolerance", "passed",
+                        "param", "step"]]
+    return worst.rename(columns={"param": "worst at param", "step": "step"})
+
+
+def case_section(case: CaseResults) -> str:
+    """The HTML section of one case."""
+    mf, name = case.manifest, case.name
+    scales = _scales(case)
+    parts = [f'<section class="case" id="case-{_e(name)}"><h2>{_e(name)}</h2>',
+             f"<p>{_e(mf.get('description', ''))} — kind <b>{_e(mf.get('kind'))}</b>, "
+             f"solvers {_e(', '.join(mf.get('solvers', [])))}"
+             + (" (quick grids)" if mf.get("quick") else "") + "</p>"]
+    for solver, reason in mf.get("skipped", {}).items():
+        parts.append(f'<p class="warn">{_e(solver)} not run: {_e(reason)}</p>')
+    bad = not_converged(case.summary)
+    if not bad.empty:
+        parts.append(f'<p class="warn bad">{len(bad)} output step(s) did not converge</p>')
+
+    # summary of the last step, dimensionless
+    s = case.summary
+    if not s.empty:
+        last = s.sort_values("step").groupby(["solver", "param"], sort=False).tail(1)
+        a0 = last["param"].map(lambda p: scales.get(p, (math.nan,) * 2)[0])
+        p0 = last["param"].map(lambda p: scales.get(p, (math.nan,) * 2)[1])
+        view = pd.DataFrame({
+            "solver": last["solver"], "param": last["param"], "step": last["step"],
+            "P [N]": last["P"], "p_max/p0": last["p_max"] / p0, "a_x/a0": last["a_x"] / a0,
+            "a_y/a0": last["a_y"] / a0, "w_max [µm]": 1e3 * last["w_max"],
+            "σ_VM,max/p0": last["vm_max"] / p0, "z(σ_VM,max)/a0": last["vm_max_z"] / a0,
+            "iterations": last["iterations"], "converged": last["converged"],
+            "wall [s]": last["wall_s"]})
+        parts.append('<h3 id="summary-' + _e(name) + '">Summary (last output step)</h3>')
+        parts.append(table_html(view, left=2))
+
+    params = list(dict.fromkeys(mf.get("params", [""])))
+    solvers = list(mf.get("solvers", []))
+    for param in params:
+        a0, p0 = scales.get(param, (math.nan, math.nan))
+        if not (math.isfinite(a0) and math.isfinite(p0)):
+            continue
+        history = {sv: case.steps(sv, param) for sv in solvers}
+        history = {sv: h for sv, h in history.items() if h}
+        if not history:
+            continue
+        label = f" — {param}" if param else ""
+        parts.append(f"<h3>Fields{_e(label)}</h3>")
+        common = set.intersection(*(set(h) for h in history.values()))
+        n = max(common) if common else max(max(h) for h in history.values())
+        at = {sv: h[n] for sv, h in history.items() if n in h}
+        where = f"{name}{label}, output step {n}"
+        parts.append('<div class="profiles">' + _fig(
+            plots.traction_profiles(at, a0, p0, f"Tractions through the centre: {where}"),
+            "traction profiles") + "</div>")
+        parts.append('<div class="differences">' + _fig(
+            plots.difference_maps(at, a0, p0, "p_n", f"Pressure differences: {where}"),
+            "difference maps") + "</div>")
+        parts.append('<div class="vm-planes">' + _fig(
+            plots.vm_planes(at, a0, p0, f"σ_VM planes: {where}"), "von Mises planes")
+            + "</div>")
+        sub = s[s["param"] == param]
+        labels = {}
+        if not sub.empty:
+            t, tl = plots.progress_axis(sub, a0)
+            labels = {int(k): f"{tl.split()[0]}={v:.3g}" for k, v in zip(sub["step"], t,
+                                                                         strict=True)}
+        parts.append('<div class="wear">' + _fig(
+            plots.wear_profiles(history, a0, labels, f"Wear profiles: {name}{label}"),
+            "wear profiles") + "</div>")
+        parts.append('<div class="evolution">' + _fig(
+            plots.histories(sub, a0, p0, f"Evolution: {name}{label}"), "evolution")
+            + "</div>")
+        tables = {sv: case.tables(sv, param) for sv in solvers}
+        parts.append('<div class="loops">' + _fig(
+            plots.loops(tables, f"Fretting loops: {name}{label}"), "fretting loops")
+            + "</div>")
+
+    sweep = plots.sweep_figure(s, scales, f"Sweep: {name}") if not s.empty else None
+    if sweep is not None:
+        parts.append('<h3>Sweep</h3><div class="sweep">' + _fig(sweep, "sweep") + "</div>")
+
+    parts.append(f'<h3 id="metrics-{_e(name)}">Metrics</h3><div class="metrics">')
+    m = case.metrics
+    if m.empty:
+        parts.append("<p>No pair of solvers to compare.</p>")
+    else:
+        n_ok = int(m["passed"].astype(str).str.lower().isin(["true", "1"]).sum())
+        cls = "ok" if n_ok == len(m) else "bad"
+        parts.append(f'<p class="{cls}">{n_ok} / {len(m)} metrics within tolerance</p>')
+        parts.append(table_html(_worst(m), status="passed", left=3))
+        cols = ["param", "step", "pair", "quantity", "metric", "value", "tolerance", "passed",
+                "tolerance_key"]
+        parts.append("<details><summary>All metrics</summary><div class='scroll'>"
+                     + table_html(m[[c for c in cols if c in m.columns]], status="passed",
+                                  left=5) + "</div></details>")
+    parts.append("</div>")
+
+    parts.append(f'<h3 id="convergence-{_e(name)}">Grid convergence</h3>'
+                 '<div class="convergence">')
+    conv = convergence_frame(case)
+    if conv.empty:
+        parts.append("<p>No grid study in these results (needs three sweep points of "
+                     "different cell size). Run e.g. <code>contact-vv sweep "
+                     f"{_e(mf.get('case', name))} --param grid.nx=21,41,81 --param "
+                     "grid.ny=21,41,81</code>.</p>")
+    else:
+        parts.append("<p>Observed order p and Roache's GCI (F<sub>s</sub> = 1.25) from the "
+                     "three finest grids; cell sizes h in units of a0.</p>")
+        parts.append(table_html(conv, status="converging", left=2))
+    parts.append("</div>")
+    parts.append(provenance_html(mf))
+    parts.append("</section>")
+    return "\n".join(p for p in parts if p)
+
+
+def provenance_html(mf: dict[str, Any]) -> str:
+    prov = mf.get("provenance", {})
+    git = prov.get("git", {})
+    versions = ", ".join(f"{k} {v}" for k, v in prov.get("versions", {}).items())
+    threads = prov.get("threads", {})
+    units = pd.DataFrame(mf.get("units", []))
+    walls = ""
+    if not units.empty:
+        walls = table_html(units[["solver", "param", "wall_s"]].rename(
+            columns={"wall_s": "wall [s]"}), left=2)
+    overrides = mf.get("overrides") or {}
+    rows = [
+        ("case file", mf.get("case_file")), ("case file SHA-256", mf.get("case_sha256")),
+        ("quick", mf.get("quick")), ("overrides", overrides or "none"),
+        ("sweep", mf.get("sweep") or "from the case file" if len(mf.get("params", [])) > 1
+         else mf.get("sweep") or "none"),
+        ("git commit", f"{git.get('commit')}" + (" (uncommitted changes)"
+                                                  if git.get("dirty") else "")),
+        ("date (UTC)", prov.get("date")), ("versions", versions),
+        ("threads", ", ".join(f"{k}={v}" for k, v in threads.items()
+                              if k != "threadpools")),
+        ("executor", mf.get("executor", "serial")),
+        ("wall time", f"{mf.get('wall_s', math.nan):.2f} s (solver time "
+                      f"{mf.get('unit_wall_s', math.nan):.2f} s)"),
+        ("command", " ".join(prov.get("command", []))),
+    ]
+    body = "".join(f'<tr><th class="l">{_e(k)}</th><td class="l">{_e(v)}</td></tr>'
+                   for k, v in rows)
+    return (f'<div class="provenance"><h3>Provenance</h3><table>{body}</table>'
+            f"{walls}</div>")
+
+
+def render(results: Scan, out: Path) -> str:
+    """The whole report page."""
+    from .manifest import provenance
+
+    when = provenance()["date"]
+    toc, sections = [], []
+    for case in results.complete:
+        m = case.metrics
+        n_ok = int(m["passed"].astype(str).str.lower().isin(["true", "1"]).sum()) \
+            if not m.empty else 0
+        bad = len(not_converged(case.summary))
+        status = "ok" if n_ok == len(m) and not bad else "bad"
+        toc.append(f'<li><a href="#case-{_e(case.name)}">{_e(case.name)}</a> '
+                   f'<span class="{status}">{n_ok}/{len(m)} metrics passed'
+                   + (f", {bad} not converged" if bad else "") + "</span></li>")
+        sections.append(case_section(case))
+    warn = ""
+    if results.incomplete:
+        items = "".join(f"<li><b>{_e(k)}</b>: {_e(v)}</li>"
+                        for k, v in results.incomplete.items())
+        warn = (f'<div class="warn" id="incomplete"><b>Incomplete runs (not reported):</b>'
+                f"<ul>{items}</ul></div>")
+    found = problems(results)
+    verdict = (f'<p class="ok" id="verdict">Gate: pass ({len(metrics_table(results))} '
+               "metrics)</p>" if not found else
+               f'<p class="bad" id="verdict">Gate: {len(found)} problem(s)</p><ul>'
+               + "".join(f"<li>{_e(x)}</li>" for x in found[:50]) + "</ul>")
+    return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
+            f"<title>contact-vv report</title><style>{CSS}</style></head><body>"
+            f"<h1>contact-vv verification report</h1><p>Results in <code>{_e(out)}</code>, "
+            f"report generated {_e(when)}.</p>{warn}{verdict}"
+            f"<nav><h2>Cases</h2><ul>{''.join(toc)}</ul></nav>{''.join(sections)}"
+            "</body></html>")
+
+
+def write_report(out: Path) -> Path:
+    """Write ``out/index.html`` atomically from whatever complete results ``out`` holds."""
+    from .errors import UserError
+
+    out = Path(out)
+    results = scan(out)
+    if not results.complete and not results.incomplete:
+        raise UserError(f"no results in {out} (run `contact-vv run` first)")
+    path = out / "index.html"
+    atomic_write_text(path, render(results, out))
+    return path
