@@ -61,7 +61,8 @@ def test_grid_edge_detected_by_the_solver_is_a_user_error(tmp_path, monkeypatch,
     (["run", "hertz", "--bogus"], "unrecognized arguments: --bogus"),
     (["gate", "--out", "/nonexistent/results"], "results directory /nonexistent/results "
                                                  "does not exist"),
-    (["report", "--out", "/nonexistent/results"], "does not exist"),
+    (["report", "--out", "/nonexistent/results"], "results directory /nonexistent/results "
+                                                   "does not exist"),
     (["sweep", "hertz", "--param", "friction.mu"],
      "--param 'friction.mu': expected KEY=START:STOP:STEP"),
     (["sweep", "hertz", "--param", "friction.mu=0:1:0"],
