@@ -1,0 +1,105 @@
+"""Interrupted runs (SIGKILL, SIGINT) never leave results that look complete, and a
+re-run restarts cleanly without mixing files of two runs."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+from test_cli_run import SWEEP, write_case
+
+from reports import layout, manifest
+from reports.cli import main
+from reports.results import scan
+
+TESTS = Path(__file__).resolve().parent
+ROOT = TESTS.parent
+DRIVER = f"""
+import sys
+sys.path[:0] = [{str(ROOT)!r}, {str(TESTS)!r}]
+from reports import solvers
+solvers.REGISTRY.update(ic="test_cli_fakes:solve_slow", fem="no_such_module_xyz:solve",
+                        analytic="test_cli_fakes:solve_exact")
+solvers.APPLICABLE["analytic"] = "test_cli_fakes:has_solution"
+from reports.cli import main
+sys.exit(main(sys.argv[1:]))
+"""
+
+
+def start(case: Path, out: Path, sleep: float) -> subprocess.Popen:
+    env = dict(os.environ, FAKE_SLEEP=str(sleep))
+    return subprocess.Popen([sys.executable, "-c", DRIVER, "run", "--no-progress", str(case),
+                             "--out", str(out)], env=env, stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True)
+
+
+def wait_for(path: Path, proc: subprocess.Popen, timeout: float = 60.0) -> None:
+    t0 = time.monotonic()
+    while not path.exists():
+        assert proc.poll() is None, proc.communicate()
+        assert time.monotonic() - t0 < timeout, f"{path} never appeared"
+        time.sleep(0.05)
+
+
+@pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT])
+def test_killed_run_restarts_cleanly(tmp_path, sig, monkeypatch):
+    import test_cli_fakes as fakes
+
+    fakes.use(monkeypatch, ic="solve_ic", analytic="solve_exact")
+    case = write_case(tmp_path, SWEEP)
+    out = tmp_path / "res"
+    # a complete earlier run
+    assert main(["run", "--no-progress", str(case), "--out", str(out)]) == 0
+    old_id = manifest.read(out / "small")["provenance"]["date"]
+
+    # a second run, killed after its first unit was written
+    proc = start(case, out, 1.5)
+    staging = layout.staging_dir(out, "small")
+    wait_for(staging / "fields" / "ic" / "mu=0.25" / "step_0000.npz", proc)
+    proc.send_signal(sig)
+    code = proc.wait(60)
+    _, err = proc.communicate()
+    if sig == signal.SIGINT:
+        assert code == 130 and "interrupted" in err and "Traceback" not in err
+    else:
+        assert code == -signal.SIGKILL
+    # nothing looks complete: the old result was withdrawn when the new run started
+    assert not (out / "small").exists()
+    found = scan(out)
+    assert not found.complete and "interrupted" in found.incomplete["small"]
+    assert main(["gate", "--out", str(out)]) == 1
+
+    # the re-run (stale staging area of a dead process) restarts and completes
+    assert main(["run", "--no-progress", str(case), "--out", str(out)]) == 0
+    assert not staging.exists()
+    mf = manifest.read(out / "small")
+    assert mf["provenance"]["date"] >= old_id
+    files = {p.relative_to(out / "small").as_posix()
+             for p in (out / "small").rglob("*") if p.is_file()}
+    assert files == set(mf["files"]) | {"manifest.json"}  # no stray file of another run
+    assert main(["gate", "--out", str(out)]) == 0
+
+
+def test_a_live_run_is_not_disturbed(tmp_path, monkeypatch, capsys):
+    import test_cli_fakes as fakes
+
+    fakes.use(monkeypatch, ic="solve_ic")
+    out = tmp_path / "res"
+    staging = layout.staging_dir(out, "small")
+    staging.mkdir(parents=True)
+    sleeper = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(30)"])
+    try:
+        (staging / ".pid").write_text(str(sleeper.pid))
+        assert main(["run", "--no-progress", str(write_case(tmp_path)), "--out",
+                     str(out)]) == 2
+        assert f"another contact-vv run (pid {sleeper.pid}) is writing" in \
+            capsys.readouterr().err
+        assert staging.is_dir()
+    finally:
+        sleeper.kill()
+        sleeper.wait()
