@@ -224,26 +224,44 @@ def _jsonable(meta: dict) -> dict:
     return out
 
 
+def _vtu_items(meshes: Any, numbers: list[int]) -> list[tuple[str, Any]]:
+    """(file stem, mesh) pairs from ``meta["vtu"]``: a mesh, a dict {step or name: mesh},
+    a list of meshes (one per output step) or a list of (step, mesh) pairs."""
+    import meshio
+
+    def stem(key: Any) -> str:
+        if isinstance(key, int | np.integer):
+            return f"step_{int(key):04d}"
+        return layout.safe_name(str(key))
+
+    if isinstance(meshes, meshio.Mesh):
+        return [("mesh", meshes)]
+    if isinstance(meshes, dict):
+        return [(stem(k), m) for k, m in meshes.items()]
+    items = []
+    for i, item in enumerate(meshes):
+        if isinstance(item, tuple | list) and len(item) == 2:
+            items.append((stem(item[0]), item[1]))
+        else:
+            items.append((stem(numbers[i] if i < len(numbers) else i), item))
+    return items
+
+
 def _write_vtu(root: Path, solver: str, param: str, result: RunResult,
                numbers: list[int]) -> list[str]:
+    """Write the meshes of ``meta["vtu"]`` (if any) as .vtu files beside the steps."""
     meshes = result.meta.get("vtu")
     if meshes is None:
         return []
     import meshio
 
-    if isinstance(meshes, meshio.Mesh):
-        items = [("mesh", meshes)]
-    elif isinstance(meshes, dict):
-        items = [(f"step_{int(k):04d}" if isinstance(k, int | np.integer) else
-                  layout.safe_name(str(k)), m) for k, m in meshes.items()]
-    else:
-        items = [(f"step_{numbers[i] if i < len(numbers) else i:04d}", m)
-                 for i, m in enumerate(meshes)]
     written = []
-    for stem, mesh in items:
+    for stem, mesh in _vtu_items(meshes, numbers):
+        if not isinstance(mesh, meshio.Mesh):
+            raise RuntimeError(f"meta['vtu'] holds a {type(mesh).__name__}, not a meshio.Mesh")
         path = layout.unit_dir(root, solver, param) / f"{stem}.vtu"
         with atomic_path(path) as tmp:
-            meshio.write(tmp, mesh, file_format="vtu")
+            meshio.write(tmp, mesh, file_format="vtu", binary=True)
         written.append(path.name)
     return written
 
@@ -400,7 +418,13 @@ def execute(plan: CasePlan, out: Path, *, executor: Executor = serial_executor,
             if outcome.result is None:
                 failures.append(outcome)
                 break
-            rows[(outcome.index, order[outcome.solver])] = write_unit(staging, outcome)
+            try:
+                rows[(outcome.index, order[outcome.solver])] = write_unit(staging, outcome)
+            except Exception as exc:  # a result that cannot be written is a failed run
+                failures.append(dataclasses.replace(
+                    outcome, result=None, kind="internal", detail=traceback.format_exc(),
+                    error=f"writing its results failed: {type(exc).__name__}: {exc}"))
+                break
             bucket = pending.setdefault(outcome.index, {})
             bucket[outcome.solver] = outcome.result
             if set(bucket) == expected[outcome.index]:

@@ -37,11 +37,15 @@ inequality |A − B| ≤ |A − exact| + |B − exact|.  The budgets:
   h/a = 0.27) plus the global discretisation error: 3 % for peak pressure and wear, 2 % for
   σ_VM,max (an integral of the tractions, smoother than them).  Field norms include the
   cells next to the contact edge, where p ∝ √(a − r) changes by O(√(h/a)) over one cell:
-  5 % in L2 and 10 % in the max norm for tractions and wear, 3 % / 8 % for σ_VM planes.
+  5 % in L2 and 10 % in the max norm for the pressure and wear, 3 % / 8 % for σ_VM
+  planes; tangential tractions 8 % / 15 %, because in partial slip they also have a kink
+  at the stick–slip boundary, resolved to a cell (measured on the quick
+  cattaneo_mindlin grid at Q/μP = 0.5 and 0.75: 8 % in L2; at Q/μP = 0.25 the slip
+  annulus is 0.4 cell wide and the error 18 %: such a case needs its own tolerance).
   Lengths are quantised to cells: semi-widths and the equivalent contact radius are good
   to one cell, the stick-zone radius to 1.5 cells (it also depends on the slip
   threshold), the σ_VM maximum (a broad maximum sampled on a lattice) to 1.5 cells or
-  0.1 a0.
+  0.3 a0 (one quick-grid cell is 0.26 a0).
 - ``fem`` (P2 elements, h ≈ a0/8 in the contact, finite block 20 a0, penalty
   100 E*/h; ``shared/notes/fem-feasibility.md`` measured p_max within 0.4 % and σ_VM,max
   within 0.3 % on such meshes): the same budgets as ``ic`` except 5 % for wear quantities
@@ -93,10 +97,12 @@ def _budget_ic(quantity: str, metric: str) -> float:
     if metric in ("l2", "max"):
         if quantity in PLANE_FIELDS:
             return 0.03 if metric == "l2" else 0.08
+        if quantity in ("p_x", "p_y"):
+            return 0.08 if metric == "l2" else 0.15
         return 0.05 if metric == "l2" else 0.10
     if metric == "cells":
         return 1.5 if quantity in ("stick_area", "vm_max_loc") else 1.0
-    return 0.1  # a0
+    return 0.3  # a0: about one cell of the quick grids (h = 0.26 a0)
 
 
 def budget(solver: str, quantity: str, metric: str) -> float:

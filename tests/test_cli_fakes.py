@@ -79,6 +79,25 @@ def solve_ic(case: Case, progress: bool = False) -> RunResult:
     return _result(case, "ic", 1.0 + ERROR)
 
 
+def solve_fem(case: Case, progress: bool = False) -> RunResult:
+    """The exact solution with a (tiny) FE mesh per output step in meta["vtu"]."""
+    import meshio
+
+    result = _result(case, "fem", 1.0 - ERROR)
+    points = np.array([[0.0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]])
+    result.meta["vtu"] = [
+        (k, meshio.Mesh(points, [("tetra", np.array([[0, 1, 2, 3]]))],
+                        point_data={"u_z": np.arange(4.0) * k}))
+        for k in range(len(result.steps))]
+    return result
+
+
+def solve_bad_vtu(case: Case, progress: bool = False) -> RunResult:
+    result = solve_exact(case)
+    result.meta["vtu"] = [(0, "not a mesh")]
+    return result
+
+
 def solve_slow(case: Case, progress: bool = False) -> RunResult:
     """The fake ic, after a pause (for interruption tests)."""
     time.sleep(float(os.environ.get("FAKE_SLEEP", "0.5")))

@@ -184,6 +184,31 @@ def test_non_converged_solver_exits_1_and_leaves_nothing_complete(tmp_path, monk
                for ln in lines)
 
 
+def test_three_solvers_three_pairs_and_vtu(tmp_path, monkeypatch):
+    import meshio
+
+    fakes.use(monkeypatch, ic="solve_ic", fem="solve_fem", analytic="solve_exact")
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path)), "--out", str(out)) == 0
+    m = pd.read_csv(out / "small" / "metrics.csv")
+    assert list(m["pair"].unique()) == ["ic-fem", "ic-analytic", "fem-analytic"]
+    p = m[(m.quantity == "p_max")].set_index("pair")["value"]
+    assert p["ic-fem"] == pytest.approx(1.02 / 0.98 - 1, rel=1e-9)
+    assert p["fem-analytic"] == pytest.approx(fakes.ERROR, rel=1e-9)
+    mesh = meshio.read(out / "small" / "fields" / "fem" / "base" / "step_0000.vtu")
+    assert mesh.cells[0].type == "tetra" and mesh.points.shape == (4, 3)
+    assert "fields/fem/base/step_0000.vtu" in manifest.read(out / "small")["files"]
+
+
+def test_unwritable_result_fails_cleanly(tmp_path, monkeypatch, capsys):
+    fakes.use(monkeypatch, analytic="solve_bad_vtu")
+    assert run(str(write_case(tmp_path)), "--out", str(tmp_path / "r")) == 1
+    err = capsys.readouterr().err
+    assert "solver analytic crashed: writing its results failed: RuntimeError: meta['vtu']" \
+        in err
+    assert not (tmp_path / "r" / "small").exists()
+
+
 def test_non_finite_fields_fail_the_run(tmp_path, monkeypatch, capsys):
     fakes.use(monkeypatch, ic="solve_nan")
     assert run(str(write_case(tmp_path)), "--out", str(tmp_path / "r")) == 1
