@@ -124,18 +124,21 @@ def cmd_list(args: argparse.Namespace) -> int:
 
 
 def _report_runs(runs, out: Path) -> int:
-    failures, user = [], False
+    from .layout import staging_dir
+
+    failed, user = [], False
     for r in runs:
         if r.failures:
-            failures += r.failures
+            failed.append(r)
             user = user or r.user_error
         else:
             print(f"{r.name}: {r.path} ({r.wall_s:.1f} s)")
-    if failures:
-        for line in failures:
+    for r in failed:
+        for line in r.failures:
             print(f"{PROG}: error: {line}", file=sys.stderr)
-        print(f"{PROG}: incomplete results left in {out}/.<case>.partial "
+        print(f"{PROG}: {r.name}: incomplete results left in {staging_dir(out, r.name)} "
               "(not reported as complete)", file=sys.stderr)
+    if failed:
         return 2 if user else 1
     return 0
 

@@ -46,6 +46,14 @@ def _centre_index(coords: np.ndarray, value: float = 0.0) -> int:
     return int(np.argmin(np.abs(np.asarray(coords) - value)))
 
 
+def _extent(steps: Mapping[str, StepResult], a0: float) -> float:
+    """Largest contact semi-width of the steps in units of a0 (1 if unknown)."""
+    widths = [float(st.scalars.get(k, math.nan)) for st in steps.values()
+              for k in ("a_x", "a_y")]
+    widths = [w for w in widths if math.isfinite(w) and w > 0]
+    return max(widths) / a0 if widths else 1.0
+
+
 def traction_profiles(steps: Mapping[str, StepResult], a0: float, p0: float,
                       title: str = "") -> Figure | None:
     """p_n, p_x, p_y along x (y = 0) and p_n along y (x = 0), every solver on one plot."""
@@ -64,6 +72,7 @@ def traction_profiles(steps: Mapping[str, StepResult], a0: float, p0: float,
             else:
                 coord, line = st.y, f[_centre_index(st.x), :]
             ax.plot(np.asarray(coord) / a0, line / p0, label=solver, **style(solver))
+        ax.set_xlim(-1.6 * _extent(steps, a0), 1.6 * _extent(steps, a0))
         ax.set_xlabel(f"{along} / a0 ({'y' if along == 'x' else 'x'} = 0)")
         ax.set_ylabel(label)
         ax.grid(alpha=0.3)
@@ -93,6 +102,9 @@ def difference_maps(steps: Mapping[str, StepResult], a0: float, p0: float,
         im = ax.pcolormesh(xs / a0, ys / a0, d.T, cmap="RdBu_r", vmin=-lim or -1,
                            vmax=lim or 1, shading="nearest")
         fig.colorbar(im, ax=ax, label=f"({field}[{a}] − {field}[{b}]) / p0")
+        half = 1.4 * _extent(steps, a0)
+        ax.set_xlim(-half, half)
+        ax.set_ylim(-half, half)
         ax.set_aspect("equal")
         ax.set_xlabel("x / a0")
         ax.set_ylabel("y / a0")
@@ -129,6 +141,8 @@ def vm_planes(steps: Mapping[str, StepResult], a0: float, p0: float,
             ax.plot(sm / a0, zm / a0, "rx", ms=10, mew=2,
                     label=f"max {vm / p0:.3f} p0 at ({sm / a0:.2f}, {zm / a0:.2f})")
             ax.legend(loc="lower right", fontsize=7)
+            half = 3.0 * _extent(steps, a0)
+            ax.set_xlim(max(s.min(), -half), min(s.max(), half))
             ax.invert_yaxis()
             ax.set_xlabel(f"{name[0]} / a0")
             ax.set_ylabel("z / a0 (depth)")
