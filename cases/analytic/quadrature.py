@@ -39,6 +39,7 @@ from .pointforce import COMPONENTS, combined, surface_limit_coefficients
 
 N_PHI = 64  # rays (trapezoid on a full circle, Gauss-Legendre on an arc)
 N_R = 32  # Gauss-Legendre nodes per radial half-interval
+SHALLOW = 0.05  # z/a below which interior points get twice the radial nodes
 _CHUNK_ELEMS = 2_000_000  # quadrature nodes held at once (memory ~ 40 arrays of this size)
 
 
@@ -169,14 +170,19 @@ def hertzian_traction_stresses(x, y, z, a: float, p0: float = 0.0, qx0: float = 
     out = {c: np.zeros(X.size) for c in COMPONENTS}
     inside = X * X + Y * Y < a * a
     on = Z == 0.0
-    chunk = max(1, _CHUNK_ELEMS // (n_phi * 2 * n_r))
+    shallow = Z < SHALLOW * a  # the kernel peak (width z) needs more radial nodes
+    n_s = 2 * n_r
     groups = (
-        (inside & ~on, lambda s: _interior(X[s], Y[s], Z[s], a, nu, loads, n_phi, n_r)),
-        (inside & on, lambda s: _surface(X[s], Y[s], a, nu, loads, n_phi, n_r)),
-        (~inside, lambda s: _exterior(X[s], Y[s], Z[s], a, nu, loads, n_phi, n_r)),
+        (inside & ~on & ~shallow, n_r,
+         lambda s: _interior(X[s], Y[s], Z[s], a, nu, loads, n_phi, n_r)),
+        (inside & ~on & shallow, n_s,
+         lambda s: _interior(X[s], Y[s], Z[s], a, nu, loads, n_phi, n_s)),
+        (inside & on, n_r, lambda s: _surface(X[s], Y[s], a, nu, loads, n_phi, n_r)),
+        (~inside, n_r, lambda s: _exterior(X[s], Y[s], Z[s], a, nu, loads, n_phi, n_r)),
     )
-    for mask, fn in groups:
+    for mask, n, fn in groups:
         idx = np.flatnonzero(mask)
+        chunk = max(1, _CHUNK_ELEMS // (n_phi * 2 * n))
         for start in range(0, idx.size, chunk):
             sel = idx[start:start + chunk]
             res = fn(sel)

@@ -7,8 +7,9 @@ For the body that slides in +x over its counterpart, the traction it feels is -�
 ``mu -> -mu`` or mirror x (see :mod:`cases.analytic.solver` for the bodies' conventions).
 
 The field is :func:`cases.analytic.quadrature.hertzian_traction_stresses` with
-(p0, μ p0): numerical quadrature of Johnson's eq. 3.19 and 3.22 (accuracy ~1e-6 p0 with
-the default rules; the surface z = 0 is the exact principal-value limit).
+(p0, μ p0): numerical quadrature of Johnson's eq. 3.19 and 3.22 (accuracy < 1e-8 p0 for
+z > 1e-4 a with the default rules, < 1e-5 p0 down to z = 1e-6 a; the surface z = 0 is the
+exact principal-value limit).
 
 Closed forms used as checks: at the trailing edge (x, y, z) = (-a, 0, 0)
 
@@ -133,7 +134,7 @@ def vm_max_sweep(mus, nu: float, *, x_range: tuple[float, float] = (-1.5, 1.5),
         lo, hi = x[max(j - 1, 0)], x[min(j + 1, nx - 1)]
         r = minimize_scalar(lambda t, mu=mu: -_vm_point(t, 0.0, mu, nu), bounds=(lo, hi),
                             method="bounded", options={"xatol": 1e-6})
-        if -r.fun > fv:
+        if -r.fun > fv and abs(abs(r.x) - 1.0) > 1e-3:  # the edge cusp is the closed form
             fv, fx = float(-r.fun), float(r.x)
         if fv >= sv:
             out.append(VmMax(mu, fv, fx, 0.0, sv, sx, sz, fv, fx))
@@ -147,18 +148,44 @@ def vm_max_xz(mu: float, nu: float, **kw) -> VmMax:
     return vm_max_sweep([mu], nu, **kw)[0]
 
 
-def surface_jump_mu(nu: float, bracket: tuple[float, float] = (0.2, 0.45)) -> float:
-    """Friction coefficient at which the location of max σ_VM jumps to the surface.
+@dataclass(frozen=True)
+class SurfaceJump:
+    """The friction coefficient at which max σ_VM jumps to the surface, and the two maxima.
 
-    Root of σ_VM(trailing edge, closed form) - σ_VM(subsurface local maximum) in μ, the
-    subsurface maximum tracked by Nelder–Mead from the μ = bracket[0] location.
+    At μ = ``mu`` the trailing-edge value (closed form) equals ``value``, the subsurface
+    local maximum at (``sub_x``, ``sub_z``) in units of a.
     """
-    start = vm_max_xz(bracket[0], nu)
-    guess = [start.sub_x, start.sub_z]
+
+    mu: float
+    value: float
+    sub_x: float
+    sub_z: float
+
+
+def surface_jump(nu: float, bracket: tuple[float, float] = (0.2, 0.45),
+                 start: tuple[float, float] | None = None) -> SurfaceJump:
+    """Root of σ_VM(trailing edge, closed form) - σ_VM(subsurface local maximum) in μ.
+
+    The subsurface maximum is tracked by Nelder–Mead from ``start`` = (x/a, z/a) (default:
+    the location found by :func:`vm_max_xz` at μ = bracket[0]).  For ν = 0.3 the root is
+    μ = 0.3047 (σ_VM = 0.661 p0 at x = 0.33 a, z = 0.42 a).
+    """
+    if start is None:
+        first = vm_max_xz(bracket[0], nu)
+        start = (first.sub_x, first.sub_z)
+    state = [start[0], start[1], np.nan]
 
     def diff(mu: float) -> float:
-        v, x, z = _refine_sub(guess[0], guess[1], mu, nu)
-        guess[0], guess[1] = x, z
+        v, x, z = _refine_sub(state[0], state[1], mu, nu)
+        state[:] = [x, z, v]
         return trailing_edge_von_mises(mu, nu) - v
 
-    return float(brentq(diff, *bracket, xtol=1e-6))
+    mu = float(brentq(diff, *bracket, xtol=1e-7))
+    diff(mu)
+    return SurfaceJump(mu=mu, value=state[2], sub_x=state[0], sub_z=state[1])
+
+
+def surface_jump_mu(nu: float, bracket: tuple[float, float] = (0.2, 0.45),
+                    start: tuple[float, float] | None = None) -> float:
+    """Friction coefficient at which the location of max σ_VM jumps to the surface."""
+    return surface_jump(nu, bracket, start).mu
