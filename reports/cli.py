@@ -96,6 +96,9 @@ def build_parser() -> argparse.ArgumentParser:
                        help="existing Dask scheduler (default: a LocalCluster)")
     sweep.add_argument("--workers", type=int, default=2,
                        help="LocalCluster worker processes; 0 runs serially (default 2)")
+    sweep.add_argument("--check-serial", action="store_true",
+                       help="re-run serially, check the numbers are identical and report "
+                       "both wall times (DIR/<case>__sweep_*/sweep_check.json)")
     common(sweep, solving=True)
     return parser
 
@@ -191,14 +194,46 @@ def cmd_sweep(args: argparse.Namespace) -> int:
                           extra_manifest={"executor": dask.info})
     wall = time.perf_counter() - t0
     code = _report_runs([run], args.out)
-    if code == 0:
-        from .plots import write_sweep_plot
+    if code != 0:
+        return code
+    from .plots import write_sweep_plot
 
-        write_sweep_plot(run.path)
-        speed = run.unit_wall_s / run.wall_s if run.wall_s > 0 else float("nan")
-        print(f"sweep: {len(plan.units())} task(s) in {wall:.1f} s wall; serial time "
-              f"(sum of task times) {run.unit_wall_s:.1f} s; speed-up {speed:.2f}x")
-    return code
+    write_sweep_plot(run.path)
+    print(f"sweep: {len(plan.units())} task(s) in {wall:.1f} s wall "
+          f"(sum of task times {run.unit_wall_s:.1f} s)")
+    if args.check_serial:
+        return _check_serial(plan, run.path, wall)
+    return 0
+
+
+def _check_serial(plan, path: Path, wall: float) -> int:
+    """Re-run a sweep serially; compare its numbers and wall time with the sweep's."""
+    import json
+    import tempfile
+
+    import pandas as pd
+
+    from cases.result import atomic_write_text
+
+    from .layout import METRICS, SUMMARY
+    from .runner import execute, serial_executor
+
+    with tempfile.TemporaryDirectory(prefix="contact-vv-serial-") as tmp:
+        t0 = time.perf_counter()
+        ref = execute(plan, Path(tmp), executor=serial_executor, progress=False)
+        serial = time.perf_counter() - t0
+        if ref.failures:
+            raise RunFailed(ref.failures)
+        a = pd.read_csv(path / SUMMARY).drop(columns="wall_s")
+        b = pd.read_csv(ref.path / SUMMARY).drop(columns="wall_s")
+        same = a.equals(b) and (path / METRICS).read_bytes() == (ref.path / METRICS).read_bytes()
+    check = {"parallel_wall_s": wall, "serial_wall_s": serial, "speedup": serial / wall,
+             "identical": bool(same)}
+    atomic_write_text(path / "sweep_check.json", json.dumps(check, indent=1))
+    print(f"sweep: serial re-run {serial:.1f} s vs parallel {wall:.1f} s "
+          f"(speed-up {serial / wall:.2f}x); numbers "
+          + ("identical" if same else "DIFFER"))
+    return 0 if same else 1
 
 
 def cmd_report(args: argparse.Namespace) -> int:

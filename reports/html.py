@@ -232,6 +232,16 @@ def case_section(case: CaseResults) -> str:
                      "three finest grids; cell sizes h in units of a0.</p>")
         parts.append(table_html(conv, status="converging", left=2))
     parts.append("</div>")
+    check = case.path / "sweep_check.json"
+    if check.is_file():
+        import json
+
+        c = json.loads(check.read_text())
+        parts.append(
+            f'<p class="{"ok" if c.get("identical") else "bad"}">Sweep on Dask: '
+            f'{c["parallel_wall_s"]:.1f} s wall against {c["serial_wall_s"]:.1f} s serial '
+            f'(speed-up {c["speedup"]:.2f}x); numbers '
+            f'{"identical to" if c.get("identical") else "DIFFERENT from"} the serial run.</p>')
     parts.append(provenance_html(mf))
     parts.append("</section>")
     return "\n".join(p for p in parts if p)

@@ -52,9 +52,10 @@ def test_dask_sweep_matches_serial(tmp_path, monkeypatch, capsys):
     case = write_case(tmp_path, SWEEP)
     args = ["sweep", "--no-progress", str(case), "--param", "friction.mu=0.1:0.4:0.1"]
     assert main([*args, "--workers", "0", "--out", str(tmp_path / "serial")]) == 0
-    assert main([*args, "--workers", "2", "--out", str(tmp_path / "dask")]) == 0
+    assert main([*args, "--workers", "2", "--check-serial", "--out",
+                 str(tmp_path / "dask")]) == 0
     out = capsys.readouterr().out
-    assert "sweep: 8 task(s)" in out and "speed-up" in out
+    assert "sweep: 8 task(s)" in out and "speed-up" in out and "numbers identical" in out
     name = "small__sweep_mu"
     a = pd.read_csv(tmp_path / "serial" / name / "summary.csv")
     b = pd.read_csv(tmp_path / "dask" / name / "summary.csv")
@@ -69,3 +70,5 @@ def test_dask_sweep_matches_serial(tmp_path, monkeypatch, capsys):
     assert mf["executor"]["workers"] == 2 and mf["executor"]["threads"] == 2
     assert mf["sweep"]["keys"] == ["friction.mu"]
     assert (tmp_path / "dask" / name / "sweep.png").is_file()
+    check = json.loads((tmp_path / "dask" / name / "sweep_check.json").read_text())
+    assert check["identical"] is True and check["serial_wall_s"] > 0
