@@ -50,6 +50,14 @@ def problems(results: Scan) -> list[str]:
     return lines
 
 
+def stale_case_file(mf: dict) -> bool:
+    """Whether the case file of a run exists and no longer has the recorded hash."""
+    from .manifest import sha256_file
+
+    path = Path(str(mf.get("case_file", "")))
+    return path.is_file() and sha256_file(path) != mf.get("case_sha256")
+
+
 def run_gate(out: Path, *, stream=None) -> int:
     """Print the table and the problems; 0 if none, 1 otherwise."""
     import sys
@@ -66,6 +74,9 @@ def run_gate(out: Path, *, stream=None) -> int:
     for case in results.complete:
         for solver, reason in case.manifest.get("skipped", {}).items():
             print(f"note: {case.name}: solver {solver} not run ({reason})", file=stream)
+        if stale_case_file(case.manifest):
+            print(f"note: {case.name}: the case file {case.manifest.get('case_file')} changed "
+                  "since the run (re-run to check the current version)", file=stream)
     n_ok = int(table["passed"].astype(str).str.lower().isin(["true", "1"]).sum()) \
         if not table.empty else 0
     print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table)} metric(s) passed, "

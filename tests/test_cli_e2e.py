@@ -99,3 +99,13 @@ def test_ic_non_convergence_exits_1(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "hertz: solver ic did not converge" in err and "residual" in err
     assert not (out / "hertz").exists()
+
+
+def test_ic_is_deterministic(tmp_path):
+    entry_point("halfspace:solve")
+    for sub in ("a", "b"):
+        assert main(["run", "hertz", "--quick", "--no-progress", "--solver", "ic", "--out",
+                     str(tmp_path / sub)]) == 0
+    a = pd.read_csv(tmp_path / "a" / "hertz" / "summary.csv").drop(columns="wall_s")
+    b = pd.read_csv(tmp_path / "b" / "hertz" / "summary.csv").drop(columns="wall_s")
+    pd.testing.assert_frame_equal(a, b, check_exact=True)

@@ -153,6 +153,16 @@ def test_gate_passes_then_fails_on_a_broken_tolerance(tmp_path, fake, capsys):
     assert "tolerance key p_max" in fails[0]
 
 
+def test_gate_notes_a_changed_case_file(tmp_path, fake, capsys):
+    case = write_case(tmp_path)
+    out = tmp_path / "res"
+    assert run(str(case), "--out", str(out)) == 0
+    case.write_text(HERTZ.replace("P = 10.2", "P = 12.0"))
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out)]) == 0  # a note, not a failure
+    assert f"note: small: the case file {case} changed since the run" in capsys.readouterr().out
+
+
 def test_pair_specific_tolerance_key(tmp_path, fake, capsys):
     text = HERTZ + '[tolerances]\n"ic-analytic.p_n_l2" = 0.015\n'
     out = tmp_path / "res"
