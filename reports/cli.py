@@ -86,6 +86,12 @@ def build_parser() -> argparse.ArgumentParser:
 
     gate = sub.add_parser("gate", help="print the metrics; exit 1 on any failure")
     common(gate, solving=False)
+    gate.add_argument("--baseline", type=Path, metavar="DIR",
+                      help="also fail on key numbers drifting from the baselines in DIR")
+    gate.add_argument("--drift", type=float, default=None, metavar="REL",
+                      help="allowed relative drift from the baseline (default 1e-6)")
+    gate.add_argument("--update-baseline", type=Path, metavar="DIR",
+                      help="write the baselines of the current results to DIR (explicit)")
 
     sweep = sub.add_parser("sweep", help="run a parameter sweep on Dask")
     sweep.add_argument("case", metavar="CASE")
@@ -247,7 +253,10 @@ def cmd_report(args: argparse.Namespace) -> int:
 def cmd_gate(args: argparse.Namespace) -> int:
     from .gate import run_gate
 
-    return run_gate(args.out)
+    if args.drift is not None and not args.drift > 0:
+        raise UserError("--drift must be a positive number")
+    return run_gate(args.out, baseline=args.baseline, update_baseline=args.update_baseline,
+                    drift_tol=args.drift)
 
 
 COMMANDS = {"list": cmd_list, "run": cmd_run, "report": cmd_report, "gate": cmd_gate,

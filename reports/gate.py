@@ -58,19 +58,36 @@ def stale_case_file(mf: dict) -> bool:
     return path.is_file() and sha256_file(path) != mf.get("case_sha256")
 
 
-def run_gate(out: Path, *, stream=None) -> int:
-    """Print the table and the problems; 0 if none, 1 otherwise."""
+def run_gate(out: Path, *, stream=None, baseline: Path | None = None,
+             update_baseline: Path | None = None, drift_tol: float | None = None) -> int:
+    """Print the table and the problems; 0 if none, 1 otherwise.
+
+    ``baseline``: also fail on key numbers that drifted from the baselines in that folder;
+    ``update_baseline``: write the baselines of the current results there instead.
+    """
     import sys
+
+    from . import baseline as bl
 
     stream = stream or sys.stdout
     results = scan(out)
     if not results.complete and not results.incomplete:
         raise UserError(f"no results in {out} (run `contact-vv run` first)")
+    if update_baseline is not None:
+        if results.incomplete:
+            raise UserError("refusing to update baselines from incomplete results: "
+                            + ", ".join(results.incomplete))
+        for path in bl.write(results, update_baseline):
+            print(f"baseline written: {path}", file=stream)
+        return 0
     table = metrics_table(results)
     with pd.option_context("display.max_rows", None, "display.width", 200,
                            "display.max_colwidth", 40):
         print(table.to_string(index=False) if not table.empty else "(no metrics)", file=stream)
     found = problems(results)
+    if baseline is not None:
+        found += bl.drift(results, baseline, bl.DEFAULT_DRIFT if drift_tol is None
+                          else drift_tol)
     for case in results.complete:
         for solver, reason in case.manifest.get("skipped", {}).items():
             print(f"note: {case.name}: solver {solver} not run ({reason})", file=stream)
