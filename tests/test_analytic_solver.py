@@ -229,3 +229,29 @@ def test_applicability_and_errors():
     E_star = 1 / ((1 - 0.09) / 210000.0 + (1 - 0.33**2) / 70000.0)
     assert res.steps[0].scalars["a_x"] == pytest.approx(
         (3 * hertz.load.P * hertz.R / (4 * E_star)) ** (1 / 3), rel=1e-14)
+
+
+@pytest.mark.parametrize("body", ["a", "b"])
+def test_body_frames_by_reflection(body):
+    # Independent derivation of the body-b convention: isotropic elasticity is invariant
+    # under the reflection z -> -z, so body b's stresses on the axes (x, y, depth) are the
+    # half-space field at (x, y, depth) under the traction (-p_x, -p_y, p_n); body a's are
+    # the field under (p_x, p_y, p_n).  The solver instead rotates by π about x; both must
+    # agree.  Orthotropic sliding at β = 45° gives p_x, p_y != 0.
+    from cases.analytic.quadrature import hertzian_traction_stresses
+
+    base = load_case("sliding_friction", quick=True)[0]
+    st = base.stress.__class__(body=body, depth=0.2, nz=3, x0=0.0, y0=0.0)
+    case = base.with_changes(friction=Friction(mu1=0.25, mu2=0.5, beta=45.0), stress=st)
+    step = solve(case).steps[0]
+    h = hz.hertz(case.load.P, case.R, case.E_star)
+    t = sliding_traction_vector(case)
+    sign = 1.0 if body == "a" else -1.0
+    for name, plane in step.planes.items():
+        S, Z = np.meshgrid(plane.s, plane.z, indexing="ij")
+        X, Y = (S, 0 * S) if name == "xz" else (0 * S, S)
+        want = hertzian_traction_stresses(X, Y, Z, h.a, p0=h.p0, qx0=sign * t[0] * h.p0,
+                                          qy0=sign * t[1] * h.p0, nu=0.3)
+        for c, v in want.items():
+            np.testing.assert_allclose(plane.fields[c], v, atol=1e-6 * h.p0, err_msg=c)
+        assert np.abs(want["syz"]).max() > 0.01 * h.p0  # the y traction shows

@@ -32,24 +32,18 @@ def boussinesq(x, y, z, nu: float) -> Stress6:
     r2 = x * x + y * y
     rho = np.sqrt(r2 + z * z)
     rho5 = rho**5
-    g = 1.0 / (rho * (rho + z))  # (1 - z/rho) / r^2
+    g = 1.0 / (rho * (rho + z))  # (1 - z/ρ)/r², regular as r -> 0
     c = (1.0 - 2.0 * nu) / (2.0 * np.pi)
-    # sigma_r - sigma_theta and sigma_theta, both regular as r -> 0 (z > 0).
-    s_theta = -c * (g - z / rho**3)
-    # sigma_r = c g - 3 z r^2 / (2 pi rho^5); write sigma_r = A + B r^2 with the r^2 pulled out
-    # so that the Cartesian rotation needs x^2/r^2 only in the regular combination below.
     k = 3.0 * z / (2.0 * np.pi * rho5)
-    # sigma_r - sigma_theta = c (2 g - z/rho^3) - k r^2; its cos/sin 2theta parts:
-    # with cos^2 = x^2/r^2: sxx = s_theta + (s_r - s_theta) x^2 / r^2.
-    # (s_r - s_theta)/r^2 = c (2g - z/rho^3)/r^2 - k; the first term is regular:
-    # 2g - z/rho^3 = 2/(rho(rho+z)) - z/rho^3 = (2 rho^2 - z rho - z^2) / (rho^3 (rho+z))
-    #             = (rho - z)(2 rho + z) / (rho^3 (rho + z)) = r^2 (2 rho + z) / (rho^3 (rho+z)^2)
+    s_theta = -c * (g - z / rho**3)
+    # σ_xx = σ_θ + (σ_r - σ_θ) x²/r², with (σ_r - σ_θ)/r² = c (2g - z/ρ³)/r² - k and
+    # 2g - z/ρ³ = (2ρ + z)(ρ - z)/(ρ³(ρ + z)) = r² (2ρ + z)/(ρ³ (ρ + z)²): no 1/r² left
     d = c * (2.0 * rho + z) / (rho**3 * (rho + z) ** 2) - k
     sxx = s_theta + d * x * x
     syy = s_theta + d * y * y
     sxy = d * x * y
     szz = -3.0 * z**3 / (2.0 * np.pi * rho5)
-    t = -3.0 * z * z / (2.0 * np.pi * rho5)  # tau_rz / r
+    t = -3.0 * z * z / (2.0 * np.pi * rho5)  # τ_rz / r
     return sxx, syy, szz, sxy, t * x, t * y
 
 

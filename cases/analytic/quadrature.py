@@ -20,6 +20,9 @@ traction's variation on the scale |r1| when the point is near the edge) by an ex
 grading of h toward the end (scale ε).  Rays: the periodic trapezoidal rule on [0, 2π) for
 points above the contact (d < a), Gauss–Legendre on the visible arc φ_c ± asin(a/d) outside
 it (the ray integral is then analytic in φ and vanishes like a² - d² sin²ψ at the ends).
+Interior points shallower than 0.05 a get twice the radial nodes (the kernel peak is z
+wide).  Accuracy of the default rule (64 rays, 2 × 32 radial nodes), against a 256 × 128
+reference: < 1e-10 p0 for z >= 0.01 a, < 1e-8 p0 down to z = 1e-4 a, 3e-9 p0 at 1e-6 a.
 
 At z = 0 above the contact, the kernels are O(1/r²) and the integral is a principal value
 plus local terms (:func:`cases.analytic.pointforce.surface_limit_coefficients`):

@@ -23,8 +23,13 @@ like a square root on both sides).
 
 The maximum of σ_VM over the xz plane (:func:`vm_max_xz`) lies below the surface for
 small μ and jumps to the trailing edge when the edge value overtakes the subsurface
-maximum (:func:`surface_jump_mu`; measured μ ≈ 0.305 for ν = 0.3, Johnson 1985 §7.1
-quotes "about 0.3").
+maximum (:func:`surface_jump`; measured μ = 0.3047 for ν = 0.3, Johnson 1985 §7.1 quotes
+"about 0.3").  Measured for ν = 0.3 (σ_VM,max/p0 at (x/a, z/a)): μ = 0: 0.6200 (0, 0.481);
+0.15: 0.6300 (0.166, 0.467); 0.25: 0.6476 (0.270, 0.444); 0.35: 0.7294 (-1, 0);
+0.5: 0.9569 (-1, 0); 0.65: 1.1857 (-1, 0).  A grid sampling of the surface does not
+resolve the cusp: on a lattice of cell size h the sampled surface maximum falls short of
+the edge value by O(√(h/a)) and may sit at the smooth surface maximum inside the contact
+(x ≈ -0.55 a for μ = 0.5).
 """
 
 from __future__ import annotations
@@ -66,8 +71,9 @@ def trailing_edge_von_mises(mu: float, nu: float) -> float:
 class VmMax:
     """Maximum of σ_VM/p0 on the plane y = 0 for one μ (coordinates in units of a).
 
-    ``value, x, z`` the global maximum; ``sub_*`` the subsurface local maximum (z > 0),
-    ``surf_*`` the surface maximum (z = 0).
+    ``value, x, z`` the global maximum; ``sub_*`` the subsurface local maximum tracked
+    from the best interior grid point (``sub_z == 0`` when it has merged with the surface,
+    e.g. μ >= 0.4 for ν = 0.3); ``surf_*`` the surface maximum (z = 0).
     """
 
     mu: float
