@@ -59,9 +59,16 @@ def traction_profiles(steps: Mapping[str, StepResult], a0: float, p0: float,
     """p_n, p_x, p_y along x (y = 0) and p_n along y (x = 0), every solver on one plot."""
     if not any(s.surface for s in steps.values()):
         return None
-    fig, axes = plt.subplots(1, 4, layout="constrained", figsize=(14, 3.2))
     specs = [("p_n", "x", "p_n / p0"), ("p_x", "x", "p_x / p0"), ("p_y", "x", "p_y / p0"),
              ("p_n", "y", "p_n / p0")]
+
+    def nonzero(field: str) -> bool:
+        return any(field in st.surface and np.nanmax(np.abs(st.surface[field])) > 0
+                   for st in steps.values())
+
+    specs = [sp for sp in specs if sp[0] == "p_n" or nonzero(sp[0])]
+    fig, axes = plt.subplots(1, len(specs), layout="constrained",
+                             figsize=(3.5 * len(specs), 3.2))
     for ax, (field, along, label) in zip(axes, specs, strict=True):
         for solver, st in steps.items():
             if field not in st.surface:
