@@ -71,7 +71,7 @@ def test_full_field_against_quadrature():
 
 
 def test_full_field_surface_equals_johnson_341():
-    # two closed forms: Hamilton-Goodman at z = 0 vs Johnson eq. 3.41 (σ_r on y = 0)
+    # two closed forms: Hamilton-Goodman at z = 0 vs Johnson §3.4 (σ_r on y = 0)
     r = np.array([0.1, 0.5, 0.9, 0.999, 1.0, 1.2, 3.0])
     f = hz.full_field(r, 0 * r, 0 * r, 1.0, 1.0, NU)
     sr, st = hz.surface_stresses(r, 1.0, 1.0, NU)

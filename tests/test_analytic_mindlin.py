@@ -18,7 +18,7 @@ def one_body_ux(X, Y, terms, nu=NU, G=G, n_phi=64, n_r=64):
     """u_x at surface points of one half-space under Hertz-shaped x-tractions.
 
     Quadrature of the Cerruti surface displacement u_x = [(1-ν)/s + ν (Δx)²/s³]/(2πG)
-    (Johnson eq. 3.86a at z = 0), in polar coordinates centred on the field point (the 1/s
+    (Cerruti, Johnson §3.2, at z = 0), in polar coordinates centred on the field point (the 1/s
     cancels with s ds); terms = [(radius, q0)] for q0 √(1 - r²/radius²).  Points inside
     every circle.
     """
@@ -42,7 +42,7 @@ def one_body_ux(X, Y, terms, nu=NU, G=G, n_phi=64, n_r=64):
     return np.array(out)
 
 
-def test_single_term_displacement_matches_johnson_739():
+def test_single_term_displacement_matches_johnson_section_72():
     # u_x = π q0 [4(2-ν)a² - (4-3ν)x² - (4-ν)y²]/(32 G a) inside the contact
     a, q0 = 0.15, 100.0
     X, Y = np.array([0.0, 0.05, 0.0, 0.06]), np.array([0.0, 0.0, 0.07, -0.04])
@@ -127,7 +127,7 @@ def test_gross_slip_shift_under_a_held_approach():
 
 @pytest.mark.parametrize("amp_ratio", [0.05, 0.4, 0.8, 1.0])
 def test_loop_area_is_the_dissipated_energy(amp_ratio):
-    # Johnson eq. 7.59 (with δ*) against the trapezoid area of the Masing loop;
+    # Johnson §7.4 (with δ*) against the trapezoid area of the Masing loop;
     # the trapezoid error ~ (δ/n)² |Q''| is < 1e-6 relative with n = 4001
     d = 0.002
     amp = amp_ratio * d

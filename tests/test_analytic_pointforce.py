@@ -1,4 +1,4 @@
-"""Boussinesq and Cerruti point-force stresses (Johnson 1985 eq. 3.19, 3.22).
+"""Boussinesq and Cerruti point-force stresses (Johnson 1985 §3.2).
 
 Each kernel is checked as an elastic field independently of the textbook formulas:
 equilibrium div σ = 0 and Beltrami–Michell compatibility by finite differences, a
@@ -111,7 +111,7 @@ def test_cerruti_tension_behind_the_force():
 
 
 def test_boussinesq_surface_radial_stress():
-    # Johnson eq. 3.19 at z = 0: σ_r = -σ_θ = (1-2ν)/(2π r²)
+    # Boussinesq at z = 0: σ_r = -σ_θ = (1-2ν)/(2π r²)
     r = np.array([0.3, 1.0, 3.0])
     s = boussinesq(r, 0 * r, 0 * r, NU)
     np.testing.assert_allclose(s[0], (1 - 2 * NU) / (2 * np.pi * r**2), rtol=1e-14)

@@ -5,13 +5,13 @@ Two bodies of moduli (E_a, ν_a), (E_b, ν_b) enter through 1/E* = (1-ν_a²)/E_
 the pressure and that body's ν only.  Sign convention: tensile stress positive, the
 pressure p > 0 compressive, z >= 0 the depth into the body.
 
-- :func:`hertz` — a0 = (3PR/4E*)^(1/3), p0 = 3P/(2πa²), approach δ = a²/R (eq. 4.22-4.23);
+- :func:`hertz` — a0 = (3PR/4E*)^(1/3), p0 = 3P/(2πa²), approach δ = a²/R (§4.2);
   :func:`hertz_from_approach` for displacement control, P = (4/3) E* R^(1/2) δ^(3/2).
-- :func:`pressure`, :func:`gap` — p(r) = p0 √(1 - r²/a²) (eq. 3.39), the surface gap
-  outside the contact (from eq. 3.41b).
+- :func:`pressure`, :func:`gap` — p(r) = p0 √(1 - r²/a²) (§3.4), the surface gap
+  outside the contact (from the surface displacement of §3.4).
 - :func:`axis_stresses`, :func:`axis_von_mises`, :func:`axis_vm_max` — σ_r = σ_θ and σ_z on
   r = 0 (eq. 3.45) and the maximum of σ_VM = |σ_z - σ_r| along the axis.
-- :func:`surface_stresses` — σ_r, σ_θ at z = 0 (eq. 3.41).
+- :func:`surface_stresses` — σ_r, σ_θ at z = 0 (§3.4).
 - :func:`full_field` — every component at any (x, y, z >= 0), the explicit equations of
   Hamilton & Goodman (1966) in the form of Hamilton (1983), normal-load part.
 """
@@ -42,14 +42,14 @@ class Hertz:
 
 
 def hertz(P: float, R: float, E_star: float) -> Hertz:
-    """Load control: a = (3PR/4E*)^(1/3), p0 = 3P/(2πa²), δ = a²/R (Johnson eq. 4.22-4.23)."""
+    """Load control: a = (3PR/4E*)^(1/3), p0 = 3P/(2πa²), δ = a²/R (Johnson 1985 §4.2)."""
     a = (3.0 * P * R / (4.0 * E_star)) ** (1.0 / 3.0)
     return Hertz(P=P, R=R, E_star=E_star, a=a, p0=3.0 * P / (2.0 * math.pi * a * a),
                  delta=a * a / R)
 
 
 def hertz_from_approach(delta: float, R: float, E_star: float) -> Hertz:
-    """Displacement control: a = √(Rδ), P = (4/3) E* √R δ^(3/2) (Johnson eq. 4.23)."""
+    """Displacement control: a = √(Rδ), P = (4/3) E* √R δ^(3/2) (Johnson 1985 §4.2)."""
     P = 4.0 / 3.0 * E_star * math.sqrt(R) * delta**1.5
     a = math.sqrt(R * delta)
     return Hertz(P=P, R=R, E_star=E_star, a=a, p0=3.0 * P / (2.0 * math.pi * a * a),
@@ -57,13 +57,13 @@ def hertz_from_approach(delta: float, R: float, E_star: float) -> Hertz:
 
 
 def pressure(r, a: float, p0: float) -> np.ndarray:
-    """p(r) = p0 √(1 - r²/a²) for r < a, 0 outside (Johnson eq. 3.39)."""
+    """p(r) = p0 √(1 - r²/a²) for r < a, 0 outside (Johnson 1985 §3.4)."""
     r = np.asarray(r, float)
     return p0 * np.sqrt(np.clip(1.0 - (r / a) ** 2, 0.0, None))
 
 
 def gap(r, a: float, R: float) -> np.ndarray:
-    """Normal gap between the deformed surfaces, 0 inside the contact (Johnson eq. 3.41b).
+    """Normal gap between the deformed surfaces, 0 inside the contact (Johnson 1985 §3.4).
 
     g(r) = r²/2R - δ + ū(r) with δ = a²/R and the combined surface displacement outside
     the contact ū = [(2a² - r²) asin(a/r) + a √(r² - a²)] / (πR), for r >= a.
@@ -102,7 +102,7 @@ def axis_vm_max(nu: float) -> tuple[float, float]:
 
 
 def surface_stresses(r, a: float, p0: float, nu: float) -> tuple[np.ndarray, np.ndarray]:
-    """(σ_r, σ_θ) at z = 0 (Johnson eq. 3.41); σ_z = -p(r).
+    """(σ_r, σ_θ) at z = 0 (Johnson 1985 §3.4); σ_z = -p(r).
 
     Inside: σ_r/p0 = (1-2ν)/3 (a²/r²)[1 - (1 - r²/a²)^(3/2)] - √(1 - r²/a²),
             σ_θ/p0 = -(1-2ν)/3 (a²/r²)[1 - (1 - r²/a²)^(3/2)] - 2ν √(1 - r²/a²);

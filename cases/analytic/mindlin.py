@@ -6,10 +6,10 @@ normal–tangential coupling).  The traction on the loaded body, parallel to Q, 
 
     q(r) = μ p0 √(1 - r²/a²) - (c/a) μ p0 √(1 - r²/c²)   (the second term for r < c only),
 
-with the stick radius c = a (1 - Q/μP)^(1/3) (Johnson eq. 7.38-7.40): slip in c <= r < a,
+with the stick radius c = a (1 - Q/μP)^(1/3) (Johnson 1985 §7.2): slip in c <= r < a,
 stick in r < c.
 
-Tangential compliance (derivation, Johnson eq. 7.39): the traction q0 √(1 - r²/a²) in x
+Tangential compliance (derivation from Johnson 1985 §7.2): the traction q0 √(1 - r²/a²) in x
 displaces the surface of *one* half-space of shear modulus G, Poisson ratio ν, by
 u_x = π q0 [4(2-ν)a² - (4-3ν)x² - (4-ν)y²] / (32 G a) inside r < a.  In the stick zone the
 x², y² terms of the two Cattaneo terms cancel and u_x = π μ p0 (2-ν)(a² - c²) / (8 G a) =
@@ -19,7 +19,7 @@ one body relative to the other (distant points; the stick zone moves rigidly) is
 
     δ_t(Q) = δ* [1 - (1 - Q/μP)^(2/3)],   δ* = (3μP / 16a) [(2-ν_a)/G_a + (2-ν_b)/G_b]
 
-(Johnson eq. 7.42), i.e. δ* = 3μP(2-ν)/(8Ga) for two identical bodies (G, ν of either
+(Johnson 1985 §7.2), i.e. δ* = 3μP(2-ν)/(8Ga) for two identical bodies (G, ν of either
 body; NOT the G/2 of the combined kernel of formulation Eq. 6 in this formula).  δ* is the
 shift at which gross slip starts.  Under a held normal approach δ_n (displacement
 control, P = (4/3)E*√R δ_n^(3/2), a = √(R δ_n)):
@@ -28,7 +28,7 @@ control, P = (4/3)E*√R δ_n^(3/2), a = √(R δ_n)):
 
 so a fretting amplitude δ_amp < δ* stays in partial slip, δ_amp >= δ* reaches gross slip
 (:func:`fretting_regime`).  The Mindlin–Deresiewicz loop (Johnson §7.4) follows from
-Q(δ) by Masing's rule, :func:`loop_partial_slip`, and its area by Johnson eq. 7.59
+Q(δ) by Masing's rule, :func:`loop_partial_slip`, and its area (Johnson 1985 §7.4)
 rewritten with δ*: ΔW = (24/5) μP δ* {1 - (1-Q*/μP)^(5/3) - (5Q*/6μP)[1 + (1-Q*/μP)^(2/3)]}
 (equivalently 8∫_0^δA F dδ - 4 Q* δA, with F the virgin curve; ~ (4/27) μP δ* (Q*/μP)³).
 """
@@ -39,13 +39,13 @@ import numpy as np
 
 
 def stick_radius(a: float, Q: float, mu: float, P: float) -> float:
-    """c = a (1 - |Q|/μP)^(1/3) (Johnson eq. 7.40); 0 at or beyond gross slip."""
+    """c = a (1 - |Q|/μP)^(1/3) (Johnson 1985 §7.2); 0 at or beyond gross slip."""
     ratio = abs(Q) / (mu * P)
     return a * max(1.0 - ratio, 0.0) ** (1.0 / 3.0)
 
 
 def traction(r, a: float, c: float, mu: float, p0: float) -> np.ndarray:
-    """|q|(r) = μ p0 √(1 - r²/a²) - (c/a) μ p0 √(1 - r²/c²) [r < c] (Johnson eq. 7.38)."""
+    """|q|(r) = μ p0 √(1 - r²/a²) - (c/a) μ p0 √(1 - r²/c²) [r < c] (Johnson §7.2)."""
     r = np.asarray(r, float)
     q = mu * p0 * np.sqrt(np.clip(1.0 - (r / a) ** 2, 0.0, None))
     if c > 0.0:
@@ -55,7 +55,7 @@ def traction(r, a: float, c: float, mu: float, p0: float) -> np.ndarray:
 
 def gross_slip_shift(mu: float, P: float, a: float, G_a: float, nu_a: float,
                      G_b: float | None = None, nu_b: float | None = None) -> float:
-    """δ* = (3μP/16a) [(2-ν_a)/G_a + (2-ν_b)/G_b]; body b rigid if G_b is None (eq. 7.42)."""
+    """δ* = (3μP/16a) [(2-ν_a)/G_a + (2-ν_b)/G_b]; body b rigid if G_b is None (§7.2)."""
     comp = (2.0 - nu_a) / G_a
     if G_b is not None:
         comp += (2.0 - (nu_a if nu_b is None else nu_b)) / G_b
@@ -109,7 +109,7 @@ def loop_partial_slip(amplitude: float, mu: float, P: float, delta_star: float,
 
 
 def dissipated_energy(Q_amp: float, mu: float, P: float, delta_star: float) -> float:
-    """Energy per cycle ΔW (Johnson eq. 7.59 with δ*): the area of :func:`loop_partial_slip`.
+    """Energy per cycle ΔW (Johnson §7.4, with δ*): the area of :func:`loop_partial_slip`.
 
     ΔW = (24/5) μP δ* [1 - (1-t)^(5/3) - (5t/6)(1 + (1-t)^(2/3))], t = Q*/μP <= 1.
     """

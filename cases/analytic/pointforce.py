@@ -5,8 +5,9 @@ body, the force acts at the surface origin, the arguments are the field point *r
 to the load point* (x_field - x_load), tensile stress is positive.
 
 - :func:`boussinesq` — unit normal force pressing on the surface (in +z, into the body),
-  Johnson eq. 3.19, written in cylindrical components and rotated to x, y.
-- :func:`cerruti` — unit tangential force in +x on the surface, Johnson eq. 3.22.
+  Johnson 1985 §3.2, written in cylindrical components and rotated to x, y.
+- :func:`cerruti` — unit tangential force in +x on the surface, Johnson 1985 §3.2 (formulation
+  Appendix A, eq. 40).
 - :func:`cerruti_y` — unit tangential force in +y (x and y exchanged).
 
 Each returns ``(sxx, syy, szz, sxy, sxz, syz)`` per unit force [1/length²].  At z = 0 the
@@ -23,7 +24,7 @@ COMPONENTS = ("sxx", "syy", "szz", "sxy", "sxz", "syz")
 
 
 def boussinesq(x, y, z, nu: float) -> Stress6:
-    """Unit normal (compressive) point force, Johnson (1985) eq. 3.19.
+    """Unit normal (compressive) point force (Boussinesq; Johnson 1985 §3.2).
 
     σ_r = [(1-2ν)/(ρ(ρ+z)) - 3 z r²/ρ⁵] / 2π,   σ_θ = -(1-2ν)[1/(ρ(ρ+z)) - z/ρ³] / 2π,
     σ_z = -3 z³/(2π ρ⁵),   τ_rz = -3 r z²/(2π ρ⁵);  r² = x² + y², ρ² = r² + z².
@@ -48,7 +49,7 @@ def boussinesq(x, y, z, nu: float) -> Stress6:
 
 
 def cerruti(x, y, z, nu: float) -> Stress6:
-    """Unit tangential point force in +x, Johnson (1985) eq. 3.22.
+    """Unit tangential point force in +x (Cerruti; Johnson 1985 §3.2).
 
     σ_x = -[3x³/ρ⁵ - (1-2ν)(x/ρ³ - 3x/(ρ(ρ+z)²) + x³/(ρ³(ρ+z)²) + 2x³/(ρ²(ρ+z)³))] / 2π
     σ_y = -[3xy²/ρ⁵ - (1-2ν)(x/ρ³ - x/(ρ(ρ+z)²) + xy²/(ρ³(ρ+z)²) + 2xy²/(ρ²(ρ+z)³))] / 2π
@@ -80,7 +81,7 @@ def combined(x, y, z, nu: float, p: float, qx: float, qy: float) -> Stress6:
     """``p·boussinesq + qx·cerruti + qy·cerruti_y``, fused for speed (same formulas).
 
     With L = qx x + qy y, F = 3/ρ⁵ - (1-2ν)(1/(ρ³(ρ+z)²) + 2/(ρ²(ρ+z)³)), B = 1/(ρ(ρ+z)²),
-    the tangential part of eq. 3.22 is
+    the tangential part of :func:`cerruti` is
     σ_x = -[x² F L - (1-2ν) L/ρ³ + (1-2ν) B (3 qx x + qy y)] / 2π,
     σ_y = -[y² F L - (1-2ν) L/ρ³ + (1-2ν) B (qx x + 3 qy y)] / 2π,
     τ_xy = -[x y F L + (1-2ν) B (qx y + qy x)] / 2π,  (σ_z, τ_xz, τ_yz) = -3 z L (z, x, y)/(2πρ⁵).
@@ -138,8 +139,8 @@ def surface_limit_coefficients(nu: float) -> dict[str, np.ndarray]:
     limit of the kernel integrated over a disc centred on the field point.  Rows: normal,
     x-, y-force; columns: :data:`COMPONENTS`.  Normal force: σ_zz gets -1 (σ_zz = -p at
     the surface), σ_xx = σ_yy get -1 (from -3zx²/2πρ⁵) + (1-2ν)/2 (from the (1-2ν)zy²/r²ρ³
-    term), i.e. -(1+2ν)/2, which is the Hertz surface stress at the centre (Johnson eq.
-    3.41).  Tangential force: τ_xz (τ_yz) gets -1 (τ_xz = -q_x at the surface); the odd
+    term), i.e. -(1+2ν)/2, which is the Hertz surface stress at the centre (Johnson
+    §3.4).  Tangential force: τ_xz (τ_yz) gets -1 (τ_xz = -q_x at the surface); the odd
     kernels have no local part.
     """
     c = np.zeros((3, 6))

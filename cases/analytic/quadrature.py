@@ -9,7 +9,7 @@ with ``t_n`` compressive (pressing in +z) and ``(t_x, t_y)`` the tangential trac
 body.  The stress at a field point is Σ_j ∫∫ T^j(x - x', y - y', z) t_j(x', y') dA'
 (formulation Eq. 24-25) with the Boussinesq and Cerruti kernels of
 :mod:`cases.analytic.pointforce`.  Superposition of such distributions gives the Hertz
-(Johnson eq. 3.39), sliding-sphere (Hamilton 1983) and Cattaneo–Mindlin (Johnson eq. 7.38)
+(Johnson 1985 §3.4), sliding-sphere (Hamilton 1983) and Cattaneo–Mindlin (Johnson §7.2)
 tractions.
 
 Quadrature, in polar coordinates (r, φ) centred on the field point's projection (X, Y):

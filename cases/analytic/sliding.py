@@ -7,7 +7,7 @@ For the body that slides in +x over its counterpart, the traction it feels is -�
 ``mu -> -mu`` or mirror x (see :mod:`cases.analytic.solver` for the bodies' conventions).
 
 The field is :func:`cases.analytic.quadrature.hertzian_traction_stresses` with
-(p0, μ p0): numerical quadrature of Johnson's eq. 3.19 and 3.22 (accuracy < 1e-8 p0 for
+(p0, μ p0): numerical quadrature of the Boussinesq and Cerruti solutions (accuracy < 1e-8 p0 for
 z > 1e-4 a with the default rules, < 1e-5 p0 down to z = 1e-6 a; the surface z = 0 is the
 exact principal-value limit).
 

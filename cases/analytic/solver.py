@@ -328,4 +328,4 @@ def _references(case: Case) -> str:
         return "Hertz; Hamilton (1983) by point-force quadrature"
     if mode in ("load", "shift"):
         return "Hertz; Cattaneo-Mindlin (Johnson 1985 §7.2) by point-force quadrature"
-    return "Hertz (Johnson 1985 eq. 3.39-3.45); Hamilton & Goodman (1966)"
+    return "Hertz (Johnson 1985 §3.4, §4.2, eq. 3.45); Hamilton & Goodman (1966)"
