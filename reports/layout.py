@@ -27,6 +27,9 @@ FIELDS = "fields"
 PARTIAL_SUFFIX = ".partial"
 FAILED = "failed.json"
 
+#: names a case directory may hold; a directory with none of them is not a result
+OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, FIELDS, "sweep.png", "sweep_check.json"})
+
 _UNSAFE = re.compile(r"[^A-Za-z0-9._=+-]")
 
 
@@ -55,6 +58,16 @@ def unit_dir(root: Path, solver: str, param: str) -> Path:
 
 def step_file(root: Path, solver: str, param: str, step: int, ext: str = "npz") -> Path:
     return unit_dir(root, solver, param) / f"step_{int(step):04d}.{ext}"
+
+
+def looks_like_result(path: Path) -> bool:
+    """Whether a directory holds anything a run writes (so it may be a damaged result)."""
+    return Path(path).is_dir() and any((Path(path) / n).exists() for n in OWN_NAMES)
+
+
+def only_own_files(path: Path) -> bool:
+    """Whether every entry of a directory is something a run writes (safe to replace)."""
+    return all(p.name in OWN_NAMES or p.name.startswith(".") for p in Path(path).iterdir())
 
 
 def partial_case_name(path: Path) -> str | None:

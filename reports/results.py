@@ -87,8 +87,8 @@ def scan(out: Path, *, verify: bool = True) -> Scan:
         if partial is not None:
             result.incomplete[partial] = _failure_reason(path)
             continue
-        if path.name.startswith("."):
-            continue
+        if path.name.startswith(".") or not layout.looks_like_result(path):
+            continue  # not something a run wrote
         try:
             mf = manifest.read(path, verify=verify)
         except manifest.IncompleteRun as exc:

@@ -392,6 +392,10 @@ def execute(plan: CasePlan, out: Path, *, executor: Executor = serial_executor,
     t0 = time.perf_counter()
     staging = claim_staging(out, plan.dir_name)
     final = layout.case_dir(out, plan.dir_name)
+    if final.exists() and not (final.is_dir() and layout.only_own_files(final)):
+        shutil.rmtree(staging)
+        raise UserError(f"{final} exists and is not a contact-vv result; refusing to replace "
+                        "it (choose another --out)")
     _remove_dir(final)  # an older result must not outlive a newer, failing run
 
     units = plan.units()

@@ -251,6 +251,19 @@ def test_manifest_missing_means_incomplete(tmp_path, fake):
     assert not found.complete and "no manifest.json" in found.incomplete["small"]
 
 
+def test_foreign_directories_are_neither_replaced_nor_flagged(tmp_path, fake, capsys):
+    out = tmp_path / "res"
+    (out / "small").mkdir(parents=True)
+    (out / "small" / "notes.txt").write_text("mine")
+    (out / "plots").mkdir()
+    assert run(str(write_case(tmp_path)), "--out", str(out)) == 2
+    assert "res/small exists and is not a contact-vv result" in capsys.readouterr().err
+    assert (out / "small" / "notes.txt").read_text() == "mine"
+    assert not layout.staging_dir(out, "small").exists()
+    found = scan(out)
+    assert not found.complete and not found.incomplete  # neither is a result
+
+
 def test_nan_metric_fails():
     from reports.compare import finish
 
