@@ -174,9 +174,9 @@ def cmd_run(args: argparse.Namespace) -> int:
             raise UserError(f"cases {seen[p.dir_name]} and {n} both write {p.dir_name}/")
         seen[p.dir_name] = n
     progress = False if args.no_progress else None
-    runs = [execute(p, args.out, progress=progress,
-                    extra_manifest={"threads_per_worker": 1}) for p in plans]
-    return _report_runs(runs, args.out)
+    codes = [_report_runs([execute(p, args.out, progress=progress)], args.out)
+             for p in plans]  # each case reported as soon as it is done
+    return 2 if 2 in codes else max(codes)
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
@@ -273,6 +273,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return COMMANDS[args.command](args)
     except (UserError, CaseError) as exc:
         return _fail(str(exc))
+    except OSError as exc:  # an unwritable --out, a full disk: the environment, not a bug
+        where = f": {exc.filename}" if exc.filename else ""
+        return _fail(f"{exc.strerror or exc}{where}")
     except RunFailed as exc:
         for line in exc.failures:
             print(f"{PROG}: error: {line}", file=sys.stderr)

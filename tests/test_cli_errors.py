@@ -74,6 +74,15 @@ def test_usage_errors(argv, needle, capsys):
     assert f"contact-vv: error: {needle}" in err
 
 
+def test_unwritable_output_is_a_clear_error(tmp_path, monkeypatch, capsys):
+    fakes.use(monkeypatch, ic="solve_ic")
+    blocker = tmp_path / "file"
+    blocker.write_text("not a directory")
+    assert main(["run", "--no-progress", str(write_case(tmp_path)), "--out",
+                 str(blocker / "res")]) == 2
+    assert f"contact-vv: error: Not a directory: {blocker / 'res'}" in capsys.readouterr().err
+
+
 def test_unavailable_solver_is_reported_clearly(tmp_path, monkeypatch, capsys):
     fakes.use(monkeypatch, analytic="solve_exact")  # ic and fem "not landed"
     assert main(["run", str(write_case(tmp_path)), "--solver", "ic,analytic"]) == 2
