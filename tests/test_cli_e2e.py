@@ -60,18 +60,6 @@ def test_analytic_hertz(tmp_path, hertz):
     assert row["vm_max"] / p0 == pytest.approx(0.620, rel=0.01)
 
 
-@pytest.mark.fem
-def test_fem_hertz(tmp_path, hertz):
-    entry_point("fem_reference:solve")
-    _, a0, p0 = hertz
-    row = run_one(tmp_path, "fem")
-    assert row["converged"]
-    # shared/notes/fem-feasibility.md: p_max 0.996-0.998 p0, σ_VM,max 0.622 p0 at h = a/8
-    assert row["p_max"] / p0 == pytest.approx(1.0, abs=0.02)
-    assert row["vm_max"] / p0 == pytest.approx(0.620, rel=0.02)
-    assert (tmp_path / "res" / "hertz" / "fields" / "fem" / "base" / "step_0000.vtu").is_file()
-
-
 def test_ic_against_analytic_report_and_gate(tmp_path, capsys):
     entry_point("halfspace:solve")
     entry_point("cases.analytic.solver:solve")
