@@ -1,0 +1,127 @@
+"""Subsurface stresses of the half-space solver against Hertz and the sliding sphere."""
+
+import numpy as np
+import pytest
+
+import halfspace
+from cases import load_case
+from cases.analytic.hertz import axis_vm_max
+from cases.analytic.sliding import sliding_sphere_stresses, vm_max_sweep
+from cases.model import Grid
+from cases.result import STRESS_COMPONENTS, von_mises
+from halfspace.stresses import StressEvaluator
+
+
+def p0_a0(case):
+    a0 = case.hertz_a0
+    return 3 * case.load.P / (2 * np.pi * a0**2), a0
+
+
+def test_hertz_axis_von_mises_81():
+    """Acceptance: on-axis max sigma_VM/p0 within 1% of the closed form, depth within
+    0.02 a0 (81^2 cells, 61 layers of 0.034 a0)."""
+    case = load_case("hertz")[0]
+    res = halfspace.solve(case).steps[0]
+    p0, a0 = p0_a0(case)
+    plane = res.planes["xz"]
+    axis = int(np.argmin(np.abs(plane.s)))
+    vm_axis = plane.fields["vm"][axis]
+    k = int(np.argmax(vm_axis))
+    ref_value, ref_depth = axis_vm_max(case.b.nu)
+    assert abs(vm_axis[k] / p0 / ref_value - 1) < 0.01
+    assert abs(plane.z[k] / a0 - ref_depth) < 0.02
+    # the plane maximum is the axis maximum, and both planes agree (axisymmetry)
+    assert res.scalars["vm_max"] == pytest.approx(vm_axis[k], rel=1e-12)
+    yz = res.planes["yz"].fields["vm"]
+    assert np.abs(yz - plane.fields["vm"]).max() < 1e-9 * p0
+    # surface on the axis: sigma_zz = -p0, sigma_xx = -(1 + 2 nu)/2 p0 (Johnson 3.41)
+    assert plane.fields["szz"][axis, 0] / p0 == pytest.approx(-1.0, abs=0.002)
+    assert plane.fields["sxx"][axis, 0] / p0 == pytest.approx(-0.8, abs=0.002)
+
+
+@pytest.fixture(scope="module")
+def sliding_runs():
+    ref = {round(float(r.mu), 2): r for r in vm_max_sweep([0.0, 0.15, 0.25, 0.5, 0.65], 0.3)}
+    cases = [c for c in load_case("sliding_friction") if round(c.friction.mu1, 2) in ref]
+    return [(c, halfspace.solve(c).steps[0], ref[round(c.friction.mu1, 2)]) for c in cases]
+
+
+def test_sliding_subsurface_maximum(sliding_runs):
+    """mu <= 0.25: the maximum lies below the surface; value within 1% of quadrature of
+    the point-force solutions over the analytic tractions, location within one cell."""
+    checked = 0
+    for case, res, ref in sliding_runs:
+        if ref.z == 0:
+            continue
+        p0, a0 = p0_a0(case)
+        s = res.scalars
+        assert abs(s["vm_max"] / p0 / ref.value - 1) < 0.01, case.param
+        assert abs(s["vm_max_x"] - ref.x * a0) <= case.grid.dx, case.param
+        dz = case.stress.depth / (case.stress.nz - 1)
+        assert abs(s["vm_max_z"] - ref.z * a0) <= dz, case.param
+        checked += 1
+    assert checked == 3
+
+
+def test_sliding_surface_maximum_on_the_grid(sliding_runs):
+    """mu >= 0.5: the maximum is at the surface behind the centre.  The continuous
+    maximum is a cusp exactly at the trailing edge x = -a, between cell centres, which a
+    cell-centred grid cannot sample: compare with the reference sampled at the same
+    points (value within 1%, location within one cell).  The gap to the cusp itself is
+    measured, not hidden: 4.7% at mu = 0.5 and 1.9% at mu = 0.65 on this grid."""
+    checked = 0
+    for case, res, ref in sliding_runs:
+        if ref.z != 0:
+            continue
+        p0, a0 = p0_a0(case)
+        plane = res.planes["xz"]
+        near = np.abs(plane.s) < 1.5 * a0
+        x = plane.s[near]
+        sig = sliding_sphere_stresses(x, np.zeros_like(x), np.zeros_like(x), a0, p0,
+                                      case.friction.mu1, case.b.nu)
+        vm_ref = von_mises(*(sig[c] for c in STRESS_COMPONENTS))
+        i = int(np.argmax(vm_ref))
+        s = res.scalars
+        assert s["vm_max_z"] == 0.0, case.param
+        assert abs(s["vm_max"] / vm_ref[i] - 1) < 0.01, case.param
+        assert abs(s["vm_max_x"] - x[i]) <= case.grid.dx * (1 + 1e-9), case.param
+        cusp_gap = 1 - s["vm_max"] / p0 / ref.value
+        print(f"{case.param}: grid maximum {cusp_gap:.1%} below the trailing-edge cusp")
+        assert 0 < cusp_gap < 0.06
+        checked += 1
+    assert checked == 2
+
+
+def test_stress_block_matches_planes():
+    """The 3D block (2D FFT per layer) equals the planes (1D FFT per row) where they meet,
+    for an asymmetric traction, for both bodies."""
+    grid = Grid(0.5, 0.4, 21, 17)
+    rng = np.random.default_rng(3)
+    p = [rng.random((21, 17)) for _ in range(3)]
+    for body in ("a", "b"):
+        ev = StressEvaluator(grid, np.array([0.0, 0.02, 0.1]), 0.3, body)
+        block = ev.block(*p)
+        planes = ev.planes(*p, x0=0.05, y0=-0.03)
+        i0 = int(np.argmin(np.abs(grid.x - 0.05)))
+        j0 = int(np.argmin(np.abs(grid.y + 0.03)))
+        for c in (*STRESS_COMPONENTS, "vm"):
+            assert np.allclose(planes["xz"].fields[c], block[c][:, j0, :], rtol=0, atol=1e-10)
+            assert np.allclose(planes["yz"].fields[c], block[c][i0, :, :], rtol=0, atol=1e-10)
+
+
+def test_body_b_is_the_mirror_of_body_a():
+    """Identical tractions seen from the two bodies: a y-symmetric normal load gives the
+    same field in both; a tangential load on a is the opposite load on b, so sxz flips."""
+    grid = Grid(0.4, 0.4, 15, 15)
+    X, Y = np.meshgrid(grid.x, grid.y, indexing="ij")
+    p_n = np.clip(1 - (X**2 + Y**2) / 0.1**2, 0, None)
+    zero = np.zeros_like(p_n)
+    z = np.array([0.0, 0.05])
+    a = StressEvaluator(grid, z, 0.3, "a").block(zero, zero, p_n)
+    b = StressEvaluator(grid, z, 0.3, "b").block(zero, zero, p_n)
+    for c in STRESS_COMPONENTS:
+        assert np.allclose(a[c], b[c], atol=1e-12)
+    a = StressEvaluator(grid, z, 0.3, "a").block(p_n, zero, zero)
+    b = StressEvaluator(grid, z, 0.3, "b").block(p_n, zero, zero)
+    assert np.allclose(a["sxz"], -b["sxz"], atol=1e-12)
+    assert np.allclose(a["sxx"], -b["sxx"], atol=1e-12)
