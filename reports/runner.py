@@ -212,15 +212,20 @@ def failure_line(case: str, outcome: UnitOutcome) -> str:
 
 
 def _jsonable(meta: dict) -> dict:
+    """Solver metadata for the manifest: JSON values kept, small arrays as lists, anything
+    else (meshes, large arrays) as a short description."""
     out = {}
     for key, value in meta.items():
         if key == "vtu":
             continue
+        if isinstance(value, np.ndarray):
+            value = value.tolist() if value.size <= 64 else \
+                f"array {value.dtype} shape {value.shape}"
         try:
             json.dumps(value)
-        except TypeError:
-            value = repr(value) if not isinstance(value, np.ndarray) else value.tolist()
-        out[key] = value
+        except (TypeError, ValueError):
+            value = f"{type(value).__name__}: {str(value)[:200]}"
+        out[str(key)] = value
     return out
 
 
@@ -433,7 +438,14 @@ def execute(plan: CasePlan, out: Path, *, executor: Executor = serial_executor,
             bucket[outcome.solver] = outcome.result
             if set(bucket) == expected[outcome.index]:
                 ordered = {s: bucket[s] for s in sorted(bucket, key=order.get)}
-                metric_parts[outcome.index] = compare_point(plan.points[outcome.index], ordered)
+                try:
+                    metric_parts[outcome.index] = compare_point(plan.points[outcome.index],
+                                                                ordered)
+                except Exception as exc:  # a result the comparisons cannot digest
+                    failures.append(dataclasses.replace(
+                        outcome, result=None, kind="internal", detail=traceback.format_exc(),
+                        error=f"comparing its results failed: {type(exc).__name__}: {exc}"))
+                    break
                 del pending[outcome.index]
     finally:
         bar.close()
