@@ -178,7 +178,9 @@ def case_section(case: CaseResults) -> str:
             "traction profiles") + "</div>")
         parts.append('<div class="differences">' + _fig(
             plots.difference_maps(at, a0, p0, "p_n", f"Pressure differences: {where}"),
-            "difference maps") + "</div>")
+            "difference maps") + _fig(
+            plots.plane_difference_maps(at, a0, p0, "xz", f"σ_VM differences: {where}"),
+            "stress difference maps") + "</div>")
         parts.append('<div class="vm-planes">' + _fig(
             plots.vm_planes(at, a0, p0, f"σ_VM planes: {where}"), "von Mises planes")
             + "</div>")

@@ -120,6 +120,39 @@ def difference_maps(steps: Mapping[str, StepResult], a0: float, p0: float,
     return fig
 
 
+def plane_difference_maps(steps: Mapping[str, StepResult], a0: float, p0: float,
+                          plane: str = "xz", title: str = "") -> Figure | None:
+    """(σ_VM[A] − σ_VM[B])/p0 on a plane, on the common sample grid of every pair."""
+    have = {s: st.planes[plane] for s, st in steps.items()
+            if plane in st.planes and "vm" in st.planes[plane].fields
+            and min(np.shape(st.planes[plane].fields["vm"])) > 1}
+    todo = pairs(list(have))
+    if not todo:
+        return None
+    fig, axes = plt.subplots(1, len(todo), layout="constrained", squeeze=False,
+                             figsize=(4.6 * len(todo), 3.0))
+    half = 3.0 * _extent(steps, a0)
+    for ax, (a, b) in zip(axes[0], todo, strict=True):
+        pa, pb = have[a], have[b]
+        ss, zs = common_axis(pa.s, pb.s), common_axis(pa.z, pb.z)
+        if not (ss.size > 1 and zs.size > 1):
+            ax.set_axis_off()
+            continue
+        d = (sample((pa.s, pa.z), pa.fields["vm"], (ss, zs))
+             - sample((pb.s, pb.z), pb.fields["vm"], (ss, zs))) / p0
+        lim = float(np.nanmax(np.abs(d))) if np.isfinite(d).any() else 1.0
+        im = ax.pcolormesh(ss / a0, zs / a0, d.T, cmap="RdBu_r", vmin=-lim or -1,
+                           vmax=lim or 1, shading="nearest")
+        fig.colorbar(im, ax=ax, label=f"(σ_VM[{a}] − σ_VM[{b}]) / p0")
+        ax.set_xlim(max(ss.min() / a0, -half), min(ss.max() / a0, half))
+        ax.invert_yaxis()
+        ax.set_xlabel(f"{plane[0]} / a0")
+        ax.set_ylabel("z / a0 (depth)")
+        ax.set_title(f"{a} − {b}, {plane} plane")
+    fig.suptitle(title or f"Differences of σ_VM on the {plane} plane")
+    return fig
+
+
 def vm_planes(steps: Mapping[str, StepResult], a0: float, p0: float,
               title: str = "") -> Figure | None:
     """σ_VM/p0 contours on the xz and yz planes, solvers side by side, maxima marked."""

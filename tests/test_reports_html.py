@@ -122,7 +122,7 @@ def test_axes_are_labelled():
     a0, p0 = hertz_scales(case)
     steps = {"ic": fakes.hertz_step(case, 1.02, 0), "analytic": fakes.hertz_step(case, 1.0, 0)}
     figs = [plots.traction_profiles(steps, a0, p0), plots.difference_maps(steps, a0, p0),
-            plots.vm_planes(steps, a0, p0)]
+            plots.plane_difference_maps(steps, a0, p0), plots.vm_planes(steps, a0, p0)]
     pattern = re.compile(r"/ ?a0|/ ?p0|\[.+\]|cycles|step")
     for fig in figs:
         for ax in fig.axes:
