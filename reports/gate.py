@@ -4,6 +4,7 @@ run or incomplete case, naming each."""
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TextIO
 
 import pandas as pd
 
@@ -58,7 +59,7 @@ def stale_case_file(mf: dict) -> bool:
     return path.is_file() and sha256_file(path) != mf.get("case_sha256")
 
 
-def run_gate(out: Path, *, stream=None, baseline: Path | None = None,
+def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None = None,
              update_baseline: Path | None = None, drift_tol: float | None = None) -> int:
     """Print the table and the problems; 0 if none, 1 otherwise.
 
