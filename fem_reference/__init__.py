@@ -1,4 +1,21 @@
 """Finite-element penalty-contact reference (scikit-fem on gmsh meshes).
 
 Shares nothing with ``halfspace`` but the case model and the result container.
+
+Public API:
+
+- :func:`solve` ``(case, progress=False, *, vtu=True, log=None) -> RunResult`` with
+  solver name ``"fem"`` (see :mod:`fem_reference.solver` for the fields and load path);
+- :func:`write_vtu` ``(path, mesh)`` writes one of the ``RunResult.meta["vtu"]``
+  ``(step, meshio.Mesh)`` meshes for ParaView; :func:`read_vtu` reads it back;
+- :class:`FemError` (case the model cannot represent, mesh failure) and
+  :class:`ContactConvergenceError` (contact iteration failed; message has the residual).
 """
+
+from .contact import ContactConvergenceError
+from .mesh import MeshError
+from .model import FemError
+from .solver import solve
+from .vtu import read_vtu, write_vtu
+
+__all__ = ["solve", "write_vtu", "read_vtu", "FemError", "MeshError", "ContactConvergenceError"]

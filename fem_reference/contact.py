@@ -1,0 +1,332 @@
+"""Penalty contact laws at points of the contact surface and the condensed Newton solver.
+
+Kinematics (formulation Eqs. 1-2, global frame, z into body a): at a surface point,
+
+    g_n = h(x, y) + w_a + w_b − δ + u_n,        g_t = g_t,o + u_t,
+
+with ``u = u^(a) − u^(b)`` the relative surface displacement, ``h`` the indenter
+profile, ``w`` the wear depths and ``δ`` the rigid approach.
+
+Laws (penalty regularisation of Eqs. 7, 8, 13):
+
+- normal: ``p_n = k_n ⟨−g_n⟩`` (Eq. 15 with ``p_n* = k_n (−g_n)``);
+- friction: an elastic predictor ``p_t* = p_t,old − k_t 𝕄² Δg_t`` (the augmented
+  traction of Eq. 16) and the radial projection onto the friction ellipse
+  ``‖p_t‖_μ ≤ p_n`` (Eqs. 9, 17): ``p_t = p_n p_t*/‖p_t*‖_μ`` when ``‖p_t*‖_μ > p_n``.
+  With the 𝕄²-weighted penalty this projection is the closest point in the metric of the
+  penalty, so the plastic slip increment is ``∝ −𝕄⁻² p_t`` — the associated sliding rule
+  (Eq. 13, erratum 11);
+- full sliding along a unit direction d (slip of a relative to b): ``p_t = −p_n 𝕄² d/‖d‖*_μ``
+  (Eq. 13 with ġ_t ∥ d, Eq. 10);
+- wear (Eq. 23, backward Euler like step IV of §3.4): a step that slides every point by
+  Δg adds ``Δw = p_n ‖Δg‖_i`` (Eq. 21) to each body; with the wear in the gap the
+  penalty law becomes ``p_n = k_n/(1 + k_n c_w) ⟨−g_n⟩`` with ``c_w = ‖Δg‖_i,a + ‖Δg‖_i,b``.
+
+The elastic response is condensed onto the surface DOFs: ``u = C f`` with the nodal
+forces ``f = Gᵀ W t`` on body a, and the Newton iteration works on the dense stiffness
+``K = C⁻¹`` bordered by the load-control equations (P, Q).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as la
+import scipy.sparse as sp
+
+from cases.result import OPEN, SLIP, STICK
+
+from .threads import blas_threads
+
+
+class ContactConvergenceError(RuntimeError):
+    """The contact iteration did not converge; the message gives the residual."""
+
+
+def rotation(beta_deg: float) -> np.ndarray:
+    """Eq. 11: components in the tribological axes (e1, e2) from (x, y)."""
+    b = np.radians(beta_deg)
+    return np.array([[np.cos(b), np.sin(b)], [-np.sin(b), np.cos(b)]])
+
+
+def axes_tensor(c1: float, c2: float, beta_deg: float) -> np.ndarray:
+    """``Rᵀ diag(c1, c2) R``: a tensor with principal values c1, c2 along e1, e2."""
+    R = rotation(beta_deg)
+    return R.T @ np.diag([c1, c2]) @ R
+
+
+def norm_with(tensor: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """``sqrt(vᵀ T v)`` row-wise for v (..., 2)."""
+    return np.sqrt(np.maximum(np.einsum("...i,ij,...j->...", v, tensor, v), 0.0))
+
+
+@dataclass
+class Law:
+    """Contact law parameters.
+
+    ``mode``: 'frictionless', 'sliding' (prescribed slip direction, full sliding) or
+    'friction' (incremental return map with history).
+    """
+
+    k_n: float
+    mode: str = "frictionless"
+    k_t: float = 0.0
+    M2: np.ndarray = field(default_factory=lambda: np.zeros((2, 2)))  # 𝕄² in x, y
+    M2inv: np.ndarray = field(default_factory=lambda: np.zeros((2, 2)))
+    slide_traction: np.ndarray = field(default_factory=lambda: np.zeros(2))  # p_t / p_n
+
+
+@dataclass
+class Points:
+    """Contact evaluation points: quadrature points (weights > 0) or probes (weights 0)."""
+
+    G: sp.csr_matrix  # (3n, m): condensed DOFs -> [u_x; u_y; u_z]
+    w: np.ndarray  # integration weights [mm²]
+    xy: np.ndarray  # (n, 2)
+    h: np.ndarray  # indenter profile [mm]
+    inside: np.ndarray  # points of the contact zone (others are never in contact)
+    wear_a: np.ndarray = None
+    wear_b: np.ndarray = None
+    t_old: np.ndarray = None  # traction at the last converged state (n, 2)
+    gt_old: np.ndarray = None  # tangential gap at the last converged state (n, 2)
+
+    def __post_init__(self) -> None:
+        n = self.w.size
+        for name, shape in (("wear_a", (n,)), ("wear_b", (n,)), ("t_old", (n, 2)),
+                            ("gt_old", (n, 2))):
+            if getattr(self, name) is None:
+                setattr(self, name, np.zeros(shape))
+
+    @property
+    def n(self) -> int:
+        return self.w.size
+
+    def displacement(self, u: np.ndarray) -> np.ndarray:
+        return (self.G @ u).reshape(3, -1).T  # (n, 3)
+
+
+@dataclass
+class Evaluation:
+    gn: np.ndarray
+    pn: np.ndarray
+    t: np.ndarray  # (n, 2)
+    gt: np.ndarray  # (n, 2)
+    state: np.ndarray
+    T: np.ndarray  # (n, 3, 3) d(t_x, t_y, p_n)/d(u_x, u_y, u_z)
+    Tdelta: np.ndarray  # (n, 3) d(t_x, t_y, p_n)/dδ
+    TD: np.ndarray  # (n, 3, 2) d(t_x, t_y, p_n)/d(g_t,o)
+
+
+def evaluate(law: Law, pts: Points, u: np.ndarray, delta: float, D: np.ndarray,
+             cw: float = 0.0) -> Evaluation:
+    """Tractions on body a, states and consistent tangents at the points ``pts``."""
+    n = pts.n
+    disp = pts.displacement(u)
+    gn = pts.h + pts.wear_a + pts.wear_b - delta + disp[:, 2]
+    k = law.k_n / (1.0 + law.k_n * cw)
+    active = (gn < 0.0) & pts.inside
+    pn = np.where(active, -k * gn, 0.0)
+    dpn_du = np.where(active, -k, 0.0)
+    dpn_dd = np.where(active, k, 0.0)
+    T = np.zeros((n, 3, 3))
+    Tdelta = np.zeros((n, 3))
+    TD = np.zeros((n, 3, 2))
+    T[:, 2, 2] = dpn_du
+    Tdelta[:, 2] = dpn_dd
+    gt = D[None, :] + disp[:, :2]
+    state = np.where(active, SLIP, OPEN)
+    if law.mode == "frictionless":
+        t = np.zeros((n, 2))
+    elif law.mode == "sliding":
+        c = law.slide_traction
+        t = pn[:, None] * c[None, :]
+        T[:, :2, 2] = c[None, :] * dpn_du[:, None]
+        Tdelta[:, :2] = c[None, :] * dpn_dd[:, None]
+    elif law.mode == "friction":
+        A = -law.k_t * law.M2
+        tstar = pts.t_old + (gt - pts.gt_old) @ A.T
+        nrm = norm_with(law.M2inv, tstar)
+        slip = active & (nrm > pn)
+        stick = active & ~slip
+        t = np.zeros((n, 2))
+        t[stick] = tstar[stick]
+        T[stick, :2, :2] = A
+        TD[stick, :2, :] = A
+        if slip.any():
+            ts, ns, ps = tstar[slip], nrm[slip], pn[slip]
+            q = ts @ law.M2inv.T
+            P = (ps / ns)[:, None, None] * (
+                np.eye(2)[None] - ts[:, :, None] * q[:, None, :] / (ns**2)[:, None, None]
+            )
+            t[slip] = (ps / ns)[:, None] * ts
+            T[slip, :2, :2] = P @ A
+            TD[slip, :2, :] = P @ A
+            direction = ts / ns[:, None]
+            T[slip, :2, 2] = direction * dpn_du[slip, None]
+            Tdelta[slip, :2] = direction * dpn_dd[slip, None]
+        state = np.where(stick, STICK, state)
+    else:
+        raise ValueError(f"unknown contact law mode {law.mode!r}")
+    return Evaluation(gn=gn, pn=pn, t=t, gt=gt, state=state, T=T, Tdelta=Tdelta, TD=TD)
+
+
+def _weighted_blocks(w: np.ndarray, T: np.ndarray) -> sp.csr_matrix:
+    """Sparse (3n x 3n) matrix with entries w_p T[p, r, c] at (r n + p, c n + p)."""
+    n = w.size
+    p = np.arange(n)
+    rows = (np.arange(3)[None, :, None] * n + p[:, None, None]) + np.zeros((1, 1, 3), int)
+    cols = (np.arange(3)[None, None, :] * n + p[:, None, None]) + np.zeros((1, 3, 1), int)
+    data = w[:, None, None] * T
+    return sp.csr_matrix((data.ravel(), (rows.ravel(), cols.ravel())), shape=(3 * n, 3 * n))
+
+
+@dataclass
+class Control:
+    """Load or displacement control of one contact solve.
+
+    ``P``: total normal load (None: the approach ``delta`` is prescribed).
+    ``Q``: total tangential load (x, y) with ``None`` per component for a prescribed
+    ``D`` (rigid tangential displacement g_t,o) in that component.
+    ``sym``: symmetry factor (4 quarter, 2 half, 1 full); ``q_free``: components of the
+    tangential load that are not fixed by symmetry.
+    """
+
+    P: float | None
+    delta: float
+    D: np.ndarray
+    Q: tuple[float | None, float | None] = (None, None)
+    sym: float = 1.0
+
+
+@dataclass
+class Solution:
+    u: np.ndarray
+    delta: float
+    D: np.ndarray
+    ev: Evaluation
+    iterations: int
+    residual: float
+
+
+def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray) -> np.ndarray:
+    """Solve ``(K + B) x = rhs`` with ``K = C⁻¹`` (dense) and a sparse contact tangent B.
+
+    B only couples the DOFs A touched by points in contact, so with the push-through
+    (Woodbury) identity ``(K + B)⁻¹ = C − C_{:A} (I + B_AA C_AA)⁻¹ B_AA C_{A:}`` the dense
+    factorisation shrinks from all condensed DOFs to the DOFs in contact.
+    """
+    y = C @ rhs
+    B = sp.csr_matrix(B)
+    B.eliminate_zeros()
+    A = np.unique(B.indices)
+    if A.size == 0:
+        return y
+    BAA = B[A][:, A]
+    M = BAA @ C[np.ix_(A, A)]
+    M[np.diag_indices_from(M)] += 1.0
+    z = la.solve(M, BAA @ y[A], check_finite=False)
+    return y - C[:, A] @ z
+
+
+def newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray, *,
+           cw: float = 0.0, tol: float = 1e-9, max_iter: int = 60) -> Solution:
+    """Semi-smooth Newton iteration of the condensed contact problem.
+
+    ``K`` is the condensed stiffness, ``C = K⁻¹`` the compliance.
+    Unknowns: the relative surface displacements u, and δ (load control on P) and
+    the components of g_t,o under tangential load control.  Equations:
+    ``K u − Gᵀ W t(u) = 0``, ``sym Σ w p_n = P`` and ``sym Σ w p_t = Q``.
+    Raises :class:`ContactConvergenceError` with the residual if it does not converge.
+    """
+    with blas_threads(1):
+        return _newton(K, C, law, pts, ctrl, u0, cw=cw, tol=tol, max_iter=max_iter)
+
+
+def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray,
+            *, cw: float, tol: float, max_iter: int) -> Solution:
+    m = K.shape[0]
+    u = u0.copy()
+    delta = float(ctrl.delta)
+    D = np.array(ctrl.D, dtype=float)
+    extra = []  # ('delta', None) or ('D', component)
+    if ctrl.P is not None:
+        extra.append(("delta", None))
+    for c in (0, 1):
+        if ctrl.Q[c] is not None:
+            extra.append(("D", c))
+    ne = len(extra)
+    w, G = pts.w, pts.G
+
+    def residual(u, delta, D):
+        ev = evaluate(law, pts, u, delta, D, cw)
+        f = G.T @ np.concatenate([w * ev.t[:, 0], w * ev.t[:, 1], w * ev.pn])
+        Ru = K @ u - f
+        Re = []
+        for kind, c in extra:
+            if kind == "delta":
+                Re.append(np.sum(w * ev.pn) - ctrl.P / ctrl.sym)
+            else:
+                Re.append(np.sum(w * ev.t[:, c]) - ctrl.Q[c] / ctrl.sym)
+        return ev, f, Ru, np.asarray(Re, dtype=float)
+
+    # residual scales: the nodal forces of the loads
+    load_scale = max(abs(ctrl.P or 0.0), *(abs(q or 0.0) for q in ctrl.Q)) / ctrl.sym
+
+    def merit(f, Ru, Re):
+        fs = max(np.linalg.norm(f), 1e-300)
+        ls = load_scale if load_scale > 0 else fs
+        return max(np.linalg.norm(Ru) / fs, *(np.abs(Re) / ls), 0.0)
+
+    res_hist = []
+    ev, f, Ru, Re = residual(u, delta, D)
+    res = merit(f, Ru, Re)
+    for it in range(1, max_iter + 1):
+        res_hist.append(res)
+        # Jacobian: J_uu = K + B with B = −Gᵀ W T G, bordered by the control equations
+        B = -(G.T @ _weighted_blocks(w, ev.T) @ G)
+        dcols = [ev.Tdelta if kind == "delta" else ev.TD[:, :, c] for kind, c in extra]
+        U = np.empty((m, ne))
+        V = np.empty((ne, m))
+        W = np.empty((ne, ne))
+        for j, d in enumerate(dcols):
+            U[:, j] = -(G.T @ np.concatenate([w * d[:, 0], w * d[:, 1], w * d[:, 2]]))
+        for i, (kind, c) in enumerate(extra):
+            r = 2 if kind == "delta" else c  # row of T: p_n or t_c
+            V[i] = G.T @ np.concatenate([w * ev.T[:, r, 0], w * ev.T[:, r, 1], w * ev.T[:, r, 2]])
+            for j, d in enumerate(dcols):
+                W[i, j] = np.sum(w * d[:, r])
+        try:
+            X = _solve_stiffened(C, B, np.column_stack([-Ru, U]))
+            xu, Xu = X[:, 0], X[:, 1:]
+            dx_e = la.solve(W - V @ Xu, -Re - V @ xu) if ne else np.zeros(0)
+        except (la.LinAlgError, ValueError) as exc:
+            raise ContactConvergenceError(
+                f"singular contact Jacobian at iteration {it} (residual {res:.3e}): {exc}"
+            ) from None
+        dx = np.concatenate([xu - Xu @ dx_e, dx_e])
+        # backtracking on the residual norm (the laws are only piecewise smooth)
+        step = 1.0
+        for _ in range(12):
+            u_t = u + step * dx[:m]
+            delta_t, D_t = delta, D.copy()
+            for j, (kind, c) in enumerate(extra):
+                if kind == "delta":
+                    delta_t += step * dx[m + j]
+                else:
+                    D_t[c] += step * dx[m + j]
+            trial = residual(u_t, delta_t, D_t)
+            res_t = merit(*trial[1:])
+            if res_t < res or res_t < tol:
+                break
+            step *= 0.5
+        u, delta, D = u_t, delta_t, D_t
+        ev, f, Ru, Re = trial
+        res = res_t
+        if res < tol:
+            return Solution(u=u, delta=delta, D=D, ev=ev, iterations=it, residual=res)
+    raise ContactConvergenceError(
+        f"contact Newton did not converge in {max_iter} iterations: relative residual "
+        f"{res_hist[-1]:.3e} (tolerance {tol:.1e}); last residuals "
+        + ", ".join(f"{r:.2e}" for r in res_hist[-5:])
+    )

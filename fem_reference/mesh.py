@@ -1,0 +1,174 @@
+"""Tetrahedral meshes of the elastic block (gmsh), cached on disk by their parameters.
+
+The block occupies ``-H <= Z <= 0`` below its contact surface ``Z = 0`` and
+``|X|, |Y| <= L`` (or the quarter ``X, Y >= 0`` / the half ``Y >= 0`` when the case is
+symmetric).  Lengths are stored in units of the Hertz radius ``a0`` so one cached mesh
+serves every case with the same dimensionless parameters; :func:`block_mesh` scales
+them to mm.
+
+The element size is ``h`` inside the refined zone (a cylinder of radius ``r_ref``
+around the Z axis, from the surface down to depth ``z_ref``) and grows linearly with
+the distance ``d`` from that zone, ``size = h + grading * d``, capped at ``h_max``.
+gmsh runs single-threaded (HXT with several threads is not bit-reproducible).
+
+Cache directory: ``$CONTACT_VV_CACHE/fem-meshes`` if the variable is set, else
+``~/.cache/contact-vv/fem-meshes``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+from dataclasses import asdict, dataclass
+from pathlib import Path
+
+import numpy as np
+from skfem import MeshTet
+
+from cases.result import atomic_path
+
+SHAPES = ("quarter", "half", "full")
+_MESH_VERSION = 1  # bump when the meshing recipe changes
+
+
+class MeshError(RuntimeError):
+    """The block mesh could not be built."""
+
+
+@dataclass(frozen=True)
+class MeshSpec:
+    """Dimensionless mesh parameters (lengths in units of a0)."""
+
+    shape: str  # 'quarter' (X, Y >= 0), 'half' (Y >= 0) or 'full'
+    L: float  # block half-width
+    H: float  # block depth
+    h: float  # element size in the refined zone
+    r_ref: float  # radius of the refined zone
+    z_ref: float  # depth of the refined zone
+    grading: float = 0.25  # size growth per unit distance from the refined zone
+    h_max: float = 4.0  # largest element size
+
+    def __post_init__(self) -> None:
+        if self.shape not in SHAPES:
+            raise MeshError(f"mesh shape {self.shape!r}: must be one of {SHAPES}")
+        for key in ("L", "H", "h", "r_ref", "z_ref", "grading", "h_max"):
+            value = getattr(self, key)
+            if not (np.isfinite(value) and value > 0):
+                raise MeshError(f"mesh parameter {key} = {value!r}: must be finite and > 0")
+        if self.r_ref >= self.L or self.z_ref >= self.H:
+            raise MeshError(
+                f"refined zone (r_ref = {self.r_ref}, z_ref = {self.z_ref}) does not fit in the "
+                f"block (L = {self.L}, H = {self.H}); enlarge fem.block / fem.depth"
+            )
+        if self.h >= self.r_ref:
+            raise MeshError(f"element size h = {self.h} must be below r_ref = {self.r_ref}")
+
+    def key(self) -> str:
+        import gmsh
+
+        payload = json.dumps(
+            {**asdict(self), "version": _MESH_VERSION, "gmsh": gmsh.__version__}, sort_keys=True
+        )
+        return hashlib.sha256(payload.encode()).hexdigest()[:20]
+
+
+def cache_dir() -> Path:
+    root = os.environ.get("CONTACT_VV_CACHE")
+    base = Path(root) if root else Path.home() / ".cache" / "contact-vv"
+    return base / "fem-meshes"
+
+
+def _generate(spec: MeshSpec) -> tuple[np.ndarray, np.ndarray]:
+    """Run gmsh; return (points (3, n), tets (4, m)) in units of a0."""
+    import gmsh
+
+    x0 = 0.0 if spec.shape == "quarter" else -spec.L
+    y0 = -spec.L if spec.shape == "full" else 0.0
+    # Distance from the refined cylinder; gmsh's MathEval parser knows Sqrt and Max.
+    dist = (
+        f"Sqrt(Max(Sqrt(x*x + y*y) - {spec.r_ref!r}, 0)^2 + Max(-z - {spec.z_ref!r}, 0)^2)"
+    )
+    size = f"Min({spec.h!r} + {spec.grading!r} * {dist}, {spec.h_max!r})"
+    gmsh.initialize(interruptible=False)
+    try:
+        gmsh.option.setNumber("General.Terminal", 0)
+        gmsh.option.setNumber("General.NumThreads", 1)
+        gmsh.option.setNumber("Mesh.MaxNumThreads3D", 1)
+        gmsh.option.setNumber("Mesh.RandomSeed", 1)
+        gmsh.model.add("block")
+        gmsh.model.occ.addBox(x0, y0, -spec.H, spec.L - x0, spec.L - y0, spec.H)
+        gmsh.model.occ.synchronize()
+        field = gmsh.model.mesh.field.add("MathEval")
+        gmsh.model.mesh.field.setString(field, "F", size)
+        gmsh.model.mesh.field.setAsBackgroundMesh(field)
+        gmsh.option.setNumber("Mesh.MeshSizeExtendFromBoundary", 0)
+        gmsh.option.setNumber("Mesh.MeshSizeFromPoints", 0)
+        gmsh.option.setNumber("Mesh.MeshSizeFromCurvature", 0)
+        gmsh.option.setNumber("Mesh.Algorithm", 6)  # Frontal-Delaunay 2D
+        gmsh.option.setNumber("Mesh.Algorithm3D", 10)  # HXT
+        gmsh.option.setNumber("Mesh.Optimize", 1)
+        gmsh.model.mesh.generate(3)
+        tags, coords, _ = gmsh.model.mesh.getNodes()
+        etypes, _, conn = gmsh.model.mesh.getElements(3)
+    except Exception as exc:  # gmsh raises bare Exceptions with its log message
+        raise MeshError(f"gmsh failed to mesh the block {spec}: {exc}") from exc
+    finally:
+        gmsh.finalize()
+    if 4 not in list(etypes):
+        raise MeshError(f"gmsh produced no tetrahedra for {spec}")
+    tets = np.asarray(conn[list(etypes).index(4)], dtype=np.int64).reshape(-1, 4)
+    tags = np.asarray(tags, dtype=np.int64)
+    lookup = np.full(tags.max() + 1, -1, dtype=np.int64)
+    lookup[tags] = np.arange(tags.size)
+    tets = lookup[tets]
+    used = np.unique(tets)
+    points = np.asarray(coords, dtype=float).reshape(-1, 3)
+    # drop nodes not used by any tetrahedron (e.g. geometry points), renumber
+    renum = np.full(points.shape[0], -1, dtype=np.int64)
+    renum[used] = np.arange(used.size)
+    points, tets = points[used], renum[tets]
+    return points.T.copy(), tets.T.copy()
+
+
+def _check(points: np.ndarray, tets: np.ndarray, spec: MeshSpec) -> None:
+    if tets.size == 0 or (tets < 0).any():
+        raise MeshError(f"invalid tetrahedral connectivity for {spec}")
+    P = points[:, tets]
+    J = np.stack([P[:, 1] - P[:, 0], P[:, 2] - P[:, 0], P[:, 3] - P[:, 0]], axis=1)
+    vol = np.abs(np.linalg.det(np.moveaxis(J, -1, 0))) / 6.0
+    x0 = 0.0 if spec.shape == "quarter" else -spec.L
+    y0 = -spec.L if spec.shape == "full" else 0.0
+    expected = (spec.L - x0) * (spec.L - y0) * spec.H
+    if (vol <= 0).any() or abs(vol.sum() - expected) > 1e-6 * expected:
+        raise MeshError(
+            f"mesh of {spec} is invalid: volume {vol.sum():.6g} vs {expected:.6g}, "
+            f"{int((vol <= 0).sum())} degenerate tetrahedra"
+        )
+
+
+def build_points(spec: MeshSpec, *, use_cache: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Dimensionless (points, tets) for ``spec``, from the cache or freshly meshed."""
+    path = cache_dir() / f"block-{spec.key()}.npz"
+    if use_cache and path.is_file():
+        try:
+            with np.load(path) as data:
+                return data["points"], data["tets"]
+        except (OSError, ValueError, KeyError):
+            pass  # corrupt cache entry: rebuild it
+    points, tets = _generate(spec)
+    _check(points, tets, spec)
+    if use_cache:
+        try:
+            with atomic_path(path) as tmp:
+                with open(tmp, "wb") as fh:
+                    np.savez(fh, points=points, tets=tets, spec=json.dumps(asdict(spec)))
+        except OSError:
+            pass  # an unwritable cache only costs time
+    return points, tets
+
+
+def block_mesh(spec: MeshSpec, a0: float, *, use_cache: bool = True) -> MeshTet:
+    """The block mesh of ``spec`` in mm (coordinates scaled by ``a0``)."""
+    points, tets = build_points(spec, use_cache=use_cache)
+    return MeshTet(points * a0, tets.astype(np.int64))

@@ -1,0 +1,292 @@
+"""The finite-element model of a case: block mesh, symmetry, factorisations, condensation.
+
+Two bodies, one mesh.  Both bodies are modelled by the same finite block (half-width L,
+depth H, bottom fixed, sides traction-free) in its own frame (X, Y, Z) with Z = −depth:
+body b is the block as it stands (global frame = block frame), body a is its mirror
+image (Z = −z).  Condensing each block onto the surface DOFs of the contact zone gives
+its compliance C₁(ν)/E (unit forces, E = 1); the relative displacement u = u⁽ᵃ⁾ − u⁽ᵇ⁾
+under the forces f on body a (−f on body b) is then
+
+    u = (R C₁(ν_a) R / E_a + C₁(ν_b) / E_b) f,       R = diag(1, 1, −1) per node,
+
+the FE counterpart of the half-space influence matrix A of Eqs. 3-6.  For identical
+materials the normal–tangential coupling blocks cancel (K = 0, Eq. 6) and the normal
+and tangential blocks equal those of one block of modulus E/2 = E*(1 − ν²) against a
+rigid indenter (erratum 10).  For dissimilar materials the coupling is kept.
+
+Symmetry: a quarter block (X, Y ≥ 0) when no tangential traction breaks the symmetry
+about both vertical planes (frictionless, or friction with no tangential load and the
+tribological axes along x, y), a half block (Y ≥ 0) for friction, tangential loading
+and sliding along ±x with axes along x, y; otherwise the full block.  Symmetry planes
+carry roller conditions (zero normal displacement).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as la
+
+from cases.model import Case, CaseError
+
+from .contact import Law, axes_tensor, norm_with
+from .elasticity import Factorization, P2Space, stiffness
+from .mesh import MeshSpec, block_mesh
+from .surface import ContactSurface
+
+
+class FemError(RuntimeError):
+    """The FEM reference cannot solve this case (the message names the cause)."""
+
+
+def reference_length(case: Case) -> float:
+    """The length unit of ``case.fem``: the Hertz radius a0 (load control) or √(R δ)."""
+    if case.load.P is not None:
+        return case.hertz_a0
+    return math.sqrt(case.R * case.load.approach)
+
+
+def slide_direction(case: Case) -> np.ndarray:
+    a = math.radians(case.load.slide_angle)
+    return np.array([math.cos(a), math.sin(a)])
+
+
+def wear_compliances(case: Case, slip: np.ndarray) -> tuple[float, float]:
+    """``‖Δg‖_i`` of bodies a and b for a slip increment Δg (Eq. 21)."""
+    beta = case.friction.beta
+    out = []
+    for body in (case.a, case.b):
+        I2 = axes_tensor(body.i1**2, body.i2**2, beta)
+        out.append(float(norm_with(I2, slip)))
+    return out[0], out[1]
+
+
+def expected_radius(case: Case, a_ref: float) -> float:
+    """Largest contact radius expected during the run, in units of ``a_ref``.
+
+    Hertz for static cases; Argatov's worn-pin radius (cases.md §4)
+    a⁴ = a0⁴ + 4 i_w P s R / π at the end of a sliding-wear run.
+    """
+    a = a_ref
+    if case.kind == "sliding_wear" and case.sliding_wear is not None:
+        d = slide_direction(case)
+        ia, ib = wear_compliances(case, d)
+        s = case.sliding_wear.distance
+        a = (a_ref**4 + 4.0 * (ia + ib) * case.load.P * s * case.R / math.pi) ** 0.25
+    return a / a_ref
+
+
+def choose_shape(case: Case) -> str:
+    fr = case.friction
+    mode = case.load.tangential_mode
+    if fr.mu1 == 0.0 and fr.mu2 == 0.0:
+        return "quarter"
+    beta = fr.beta % 90.0
+    aligned = fr.isotropic or min(beta, 90.0 - beta) < 1e-12
+    wear_aligned = all(b.i1 == b.i2 for b in (case.a, case.b)) or aligned
+    if mode == "none" and case.kind == "static" and aligned:
+        return "quarter"
+    along_x = False
+    if mode == "load":
+        along_x = not case.load.Qy
+    elif mode == "shift":
+        along_x = not case.load.shift_y
+    elif mode == "sliding":
+        along_x = abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
+    if case.kind == "fretting":
+        along_x = along_x or mode == "none"
+    if aligned and wear_aligned and along_x:
+        return "half"
+    return "full"
+
+
+@dataclass
+class Symmetry:
+    shape: str
+
+    @property
+    def factor(self) -> float:
+        return {"quarter": 4.0, "half": 2.0, "full": 1.0}[self.shape]
+
+    def map(self, xy: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Points mapped into the modelled part and the reflection signs (sx, sy).
+
+        A component odd under a reflection (p_x, σ_xy, σ_xz for x → −x) is multiplied by
+        its sign; on a mirror plane itself the sign is 0: those components vanish there by
+        symmetry, the average of the field and its mirror image.
+        """
+        xy = np.array(xy, dtype=float, copy=True)
+        sx = np.ones(xy.shape[0])
+        sy = np.ones(xy.shape[0])
+        tol = 1e-9 * max(float(np.abs(xy).max(initial=0.0)), 1e-300)
+        if self.shape == "quarter":
+            sx = np.where(xy[:, 0] < 0, -1.0, 1.0)
+            sx[np.abs(xy[:, 0]) <= tol] = 0.0
+            xy[:, 0] = np.abs(xy[:, 0])
+        if self.shape in ("quarter", "half"):
+            sy = np.where(xy[:, 1] < 0, -1.0, 1.0)
+            sy[np.abs(xy[:, 1]) <= tol] = 0.0
+            xy[:, 1] = np.abs(xy[:, 1])
+        return xy, sx, sy
+
+
+class FemModel:
+    """Mesh, factorised stiffness and condensed two-body surface stiffness of a case."""
+
+    def __init__(self, case: Case, *, log=None):
+        t0 = time.perf_counter()
+        self.case = case
+        fem = case.fem
+        if fem.order != 2:
+            raise FemError(f"fem.order = {fem.order}: fem_reference implements P2 (order 2) only")
+        if case.kind == "fretting":
+            raise FemError("kind 'fretting' is not implemented by fem_reference yet")
+        self.a_ref = reference_length(case)
+        self.h = fem.h * self.a_ref  # element size in the contact zone [mm]
+        self.a_max = expected_radius(case, self.a_ref)  # units of a_ref
+        r_c = 1.25 * self.a_max + 2.0 * fem.h
+        z_ref = max(1.0, 0.8 * self.a_max)
+        self.shape = choose_shape(case)
+        self.sym = Symmetry(self.shape)
+        grid = case.grid
+        L_mm, H_mm = fem.block * self.a_ref, fem.depth * self.a_ref
+        half_grid = 0.5 * max(grid.Lx, grid.Ly) + max(abs(case.stress.x0), abs(case.stress.y0))
+        if half_grid >= L_mm:
+            raise CaseError(
+                f"fem.block = {fem.block} (L = {L_mm:.4g} mm) does not cover the contact grid "
+                f"(half-width {half_grid:.4g} mm); increase fem.block"
+            )
+        if case.stress.depth >= H_mm:
+            raise CaseError(
+                f"fem.depth = {fem.depth} (H = {H_mm:.4g} mm) is not deeper than stress.depth "
+                f"= {case.stress.depth} mm; increase fem.depth"
+            )
+        if r_c * self.a_ref > 0.5 * min(grid.Lx, grid.Ly):
+            raise CaseError(
+                f"the expected contact (radius {self.a_max * self.a_ref:.4g} mm) reaches the edge "
+                f"of the potential contact grid (grid.Lx, grid.Ly)"
+            )
+        self.spec = MeshSpec(self.shape, fem.block, fem.depth, fem.h, r_c, z_ref,
+                             grading=0.25, h_max=fem.block / 4.0)
+        self.mesh = block_mesh(self.spec, self.a_ref)
+        t_mesh = time.perf_counter()
+        self.space = space = P2Space(self.mesh)
+        nodes = space.nodes
+        tol = 1e-9 * self.a_ref
+        fixed = np.zeros(space.ndofs, dtype=bool)
+        bottom = np.nonzero(np.abs(nodes[2] + H_mm) < tol)[0]
+        fixed[(3 * bottom[:, None] + np.arange(3)).ravel()] = True
+        if self.shape == "quarter":
+            fixed[3 * np.nonzero(np.abs(nodes[0]) < tol)[0]] = True
+        if self.shape in ("quarter", "half"):
+            fixed[3 * np.nonzero(np.abs(nodes[1]) < tol)[0] + 1] = True
+        self.fixed = fixed
+        self.free = np.nonzero(~fixed)[0]
+        self.law_mode = self._law_mode()
+        comps = (2,) if self.law_mode == "frictionless" else (0, 1, 2)
+        self.surface = ContactSurface(space, r_c * self.a_ref, comps, fixed)
+        self.top = ContactSurface(space, np.inf, (2,), fixed)
+        pos = np.searchsorted(self.free, self.surface.dofs)
+        if not np.array_equal(self.free[pos], self.surface.dofs):
+            raise FemError("internal error: a condensed surface DOF is fixed")
+        # stiffness, factorisation and condensation per distinct Poisson's ratio
+        self.factor: dict[float, Factorization] = {}
+        self.stiffness: dict[float, object] = {}  # K (E = 1) for the reactions
+        C1: dict[float, np.ndarray] = {}
+        t_asm = t_fac = t_cond = 0.0
+        for nu in sorted({case.a.nu, case.b.nu}):
+            ta = time.perf_counter()
+            K = stiffness(space, nu)
+            Kff = K[self.free][:, self.free].tocsr()
+            self.stiffness[nu] = K[np.nonzero(fixed)[0]].tocsr()  # rows of the fixed DOFs
+            tb = time.perf_counter()
+            F = Factorization(Kff, partial=pos)
+            tc = time.perf_counter()
+            C1[nu] = F.schur_inverse()
+            td = time.perf_counter()
+            self.factor[nu] = F
+            t_asm, t_fac, t_cond = t_asm + tb - ta, t_fac + tc - tb, t_cond + td - tc
+            if log:
+                log(f"nu={nu}: {Kff.shape[0]} free DOFs, assembly {tb - ta:.1f} s, "
+                    f"factorisation {tc - tb:.1f} s, "
+                    f"condensation ({pos.size} DOFs) {td - tc:.1f} s")
+        Rz = np.where(self.surface.dof_comp == 2, -1.0, 1.0)
+        Crel = (Rz[:, None] * C1[case.a.nu] * Rz[None, :]) / case.a.E + C1[case.b.nu] / case.b.E
+        self.Crel = Crel
+        cho = la.cho_factor(Crel)
+        self.Krel = la.cho_solve(cho, np.eye(Crel.shape[0]))
+        self.Krel = 0.5 * (self.Krel + self.Krel.T)
+        self.law = self._law()
+        self.timings = {
+            "mesh_s": t_mesh - t0, "assembly_s": t_asm, "factorisation_s": t_fac,
+            "condensation_s": t_cond, "setup_s": time.perf_counter() - t0,
+        }
+
+    # ------------------------------------------------------------------ contact law
+
+    def _law_mode(self) -> str:
+        case = self.case
+        if case.friction.mu1 == 0.0:
+            return "frictionless"
+        mode = case.load.tangential_mode
+        if mode == "sliding" or case.kind == "sliding_wear":
+            return "sliding"
+        if mode in ("load", "shift") or not case.identical_materials:
+            return "friction"
+        return "frictionless"  # identical materials, no tangential load: p_t stays 0
+
+    def _law(self) -> Law:
+        case = self.case
+        k_n = case.fem.penalty * case.E_star / self.h
+        if self.law_mode == "frictionless":
+            return Law(k_n=k_n)
+        fr = case.friction
+        M2 = axes_tensor(fr.mu1**2, fr.mu2**2, fr.beta)
+        M2inv = axes_tensor(fr.mu1**-2, fr.mu2**-2, fr.beta)
+        if self.law_mode == "sliding":
+            d = slide_direction(case)
+            c = -(M2 @ d) / float(norm_with(M2, d))
+            return Law(k_n=k_n, mode="sliding", M2=M2, M2inv=M2inv, slide_traction=c)
+        # tangential penalty k_t 𝕄²: at least k_n along the weaker friction axis
+        k_t = k_n / min(fr.mu1, fr.mu2) ** 2
+        return Law(k_n=k_n, mode="friction", k_t=k_t, M2=M2, M2inv=M2inv)
+
+    # ------------------------------------------------------------------ full solves
+
+    def body_displacements(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Block-frame displacements (E = 1 scaling removed) of bodies a and b.
+
+        ``f``: condensed nodal forces on body a (global frame).  Returns the true
+        displacement fields (3 * nnodes,) of a and b, each in its own block frame.
+        """
+        case = self.case
+        out = []
+        for body, sign_z in ((case.a, -1.0), (case.b, None)):
+            F = np.zeros(self.space.ndofs)
+            if sign_z is None:  # body b carries −f, block frame = global frame
+                F[self.surface.dofs] = -f
+            else:  # body a carries f; block frame z = −global z
+                F[self.surface.dofs] = np.where(self.surface.dof_comp == 2, -f, f)
+            u = np.zeros(self.space.ndofs)
+            u[self.free] = self.factor[body.nu].solve(F[self.free]) / body.E
+            out.append(u)
+        return out[0], out[1]
+
+    def support_reaction(self, u: np.ndarray, body) -> float:
+        """Total vertical force of the block's supports on a body (symmetry included).
+
+        ``u``: the body's true displacement (block frame).  Equilibrium of the whole FE
+        block: equals the transmitted normal load P.
+        """
+        r = body.E * (self.stiffness[body.nu] @ u)  # reactions at the fixed DOFs
+        fixed = np.nonzero(self.fixed)[0]
+        z = (fixed % 3) == 2
+        return self.sym.factor * float(r[z].sum())
+
+    def free_memory(self) -> None:
+        for F in self.factor.values():
+            F.free()
+        self.factor.clear()

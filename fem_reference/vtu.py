@@ -1,0 +1,54 @@
+"""FE fields as VTK unstructured grids (``.vtu``) for ParaView, through meshio.
+
+The mesh is written with its quadratic tetrahedra (``tetra10``; the P2 node order of
+:mod:`fem_reference.elasticity` is VTK's) in the block frame of the reported body:
+x and y the global axes, Z = −depth (the body lies below its contact surface Z = 0).
+Point data: ``displacement`` (3 components, mm), the stress components ``sxx, syy,
+szz, sxy, sxz, syz`` in that frame and ``von_mises`` (MPa), volume-averaged at the
+nodes from the exact element stresses.  A quarter or half model holds the modelled
+part only (ParaView's Reflect filter restores the rest).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import meshio
+import numpy as np
+
+from cases.result import atomic_path, von_mises
+
+from .elasticity import P2Space
+from .stresses import COMPONENTS, nodal_stresses
+
+_PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
+
+
+def fields_mesh(space: P2Space, u: np.ndarray, nu: float, E: float) -> meshio.Mesh:
+    """A meshio mesh with the displacement ``u`` (3 * nnodes,) of a body (ν, E), its stresses."""
+    sig = nodal_stresses(space, u, nu, E)
+    point_data = {"displacement": u.reshape(-1, 3).copy()}
+    comps = {}
+    for name, (i, j) in zip(COMPONENTS, _PAIRS, strict=True):
+        comps[name] = sig[:, i, j].copy()
+    point_data.update(comps)
+    point_data["von_mises"] = von_mises(*(comps[c] for c in COMPONENTS))
+    return meshio.Mesh(
+        points=space.nodes.T.copy(),
+        cells=[("tetra10", space.element_nodes.T.astype(np.int64).copy())],
+        point_data=point_data,
+    )
+
+
+def write_vtu(path: str | Path, mesh: meshio.Mesh) -> Path:
+    """Write ``mesh`` to ``path`` (.vtu, binary, written atomically); return the path."""
+    path = Path(path)
+    if path.suffix != ".vtu":
+        raise ValueError(f"{path}: expected a .vtu file name")
+    with atomic_path(path) as tmp:
+        meshio.write(tmp, mesh, file_format="vtu", binary=True)
+    return path
+
+
+def read_vtu(path: str | Path) -> meshio.Mesh:
+    return meshio.read(path, file_format="vtu")
