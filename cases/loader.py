@@ -319,6 +319,8 @@ def load_case(name_or_path: str | Path, *, quick: bool = False,
     values = sweep["values"]
     if quick and "sweep.values" in raw.get("quick", {}):
         values = raw["quick"]["sweep.values"]
+    if overrides and sweep["key"] in overrides:
+        values = [overrides[sweep["key"]]]  # overriding the swept key narrows the sweep
     label = sweep.get("label", sweep["key"].split(".")[-1])
     cases = []
     for value in values:
