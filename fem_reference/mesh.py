@@ -9,6 +9,8 @@ them to mm.
 The element size is ``h`` inside the refined zone (a cylinder of radius ``r_ref``
 around the Z axis, from the surface down to depth ``z_ref``) and grows linearly with
 the distance ``d`` from that zone, ``size = h + grading * d``, capped at ``h_max``.
+With ``r_fine < r_ref`` (a contact that grows, e.g. by wear) the size inside the zone is
+``h`` within the distance ``r_fine`` of the origin and ``h ρ / r_fine`` beyond.
 gmsh runs single-threaded (HXT with several threads is not bit-reproducible).
 
 Cache directory: ``$CONTACT_VV_CACHE/fem-meshes`` if the variable is set, else
@@ -29,7 +31,7 @@ from skfem import MeshTet
 from cases.result import atomic_path
 
 SHAPES = ("quarter", "half", "full")
-_MESH_VERSION = 1  # bump when the meshing recipe changes
+_MESH_VERSION = 2  # bump when the meshing recipe changes
 
 
 class MeshError(RuntimeError):
@@ -48,10 +50,13 @@ class MeshSpec:
     z_ref: float  # depth of the refined zone
     grading: float = 0.25  # size growth per unit distance from the refined zone
     h_max: float = 4.0  # largest element size
+    r_fine: float | None = None  # radius of the h zone (None: r_ref); beyond, h ∝ distance
 
     def __post_init__(self) -> None:
         if self.shape not in SHAPES:
             raise MeshError(f"mesh shape {self.shape!r}: must be one of {SHAPES}")
+        if self.r_fine is not None and not (0 < self.r_fine <= self.r_ref):
+            raise MeshError(f"mesh parameter r_fine = {self.r_fine!r}: must lie in (0, r_ref]")
         for key in ("L", "H", "h", "r_ref", "z_ref", "grading", "h_max"):
             value = getattr(self, key)
             if not (np.isfinite(value) and value > 0):
@@ -89,7 +94,10 @@ def _generate(spec: MeshSpec) -> tuple[np.ndarray, np.ndarray]:
     dist = (
         f"Sqrt(Max(Sqrt(x*x + y*y) - {spec.r_ref!r}, 0)^2 + Max(-z - {spec.z_ref!r}, 0)^2)"
     )
-    size = f"Min({spec.h!r} + {spec.grading!r} * {dist}, {spec.h_max!r})"
+    inner = f"{spec.h!r}"
+    if spec.r_fine is not None and spec.r_fine < spec.r_ref:
+        inner = f"{spec.h!r} * Max(1, Sqrt(x*x + y*y + z*z) / {spec.r_fine!r})"
+    size = f"Min({inner} + {spec.grading!r} * {dist}, {spec.h_max!r})"
     gmsh.initialize(interruptible=False)
     try:
         gmsh.option.setNumber("General.Terminal", 0)

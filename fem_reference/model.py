@@ -94,7 +94,7 @@ def choose_shape(case: Case) -> str:
         along_x = not case.load.Qy
     elif mode == "shift":
         along_x = not case.load.shift_y
-    elif mode == "sliding":
+    if mode == "sliding" or case.kind == "sliding_wear":
         along_x = abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
     if case.kind == "fretting":
         along_x = along_x or mode == "none"
@@ -149,6 +149,9 @@ class FemModel:
         self.a_max = expected_radius(case, self.a_ref)  # units of a_ref
         r_c = 1.25 * self.a_max + 2.0 * fem.h
         z_ref = max(1.0, 0.8 * self.a_max)
+        # a growing (worn) contact: h in the initial contact, then h ∝ distance, so the
+        # final contact of radius a_max is resolved with about the same elements per radius
+        r_fine = min(1.25, r_c) if self.a_max > 1.25 else r_c
         self.shape = choose_shape(case)
         self.sym = Symmetry(self.shape)
         grid = case.grid
@@ -164,13 +167,13 @@ class FemModel:
                 f"fem.depth = {fem.depth} (H = {H_mm:.4g} mm) is not deeper than stress.depth "
                 f"= {case.stress.depth} mm; increase fem.depth"
             )
-        if r_c * self.a_ref > 0.5 * min(grid.Lx, grid.Ly):
+        if self.a_max * self.a_ref >= 0.5 * min(grid.Lx, grid.Ly):
             raise CaseError(
                 f"the expected contact (radius {self.a_max * self.a_ref:.4g} mm) reaches the edge "
                 f"of the potential contact grid (grid.Lx, grid.Ly)"
             )
         self.spec = MeshSpec(self.shape, fem.block, fem.depth, fem.h, r_c, z_ref,
-                             grading=0.25, h_max=fem.block / 4.0)
+                             grading=0.25, h_max=fem.block / 4.0, r_fine=r_fine)
         self.mesh = block_mesh(self.spec, self.a_ref)
         t_mesh = time.perf_counter()
         self.space = space = P2Space(self.mesh)
@@ -186,11 +189,21 @@ class FemModel:
         self.fixed = fixed
         self.free = np.nonzero(~fixed)[0]
         self.law_mode = self._law_mode()
-        comps = (2,) if self.law_mode == "frictionless" else (0, 1, 2)
-        self.surface = ContactSurface(space, r_c * self.a_ref, comps, fixed)
+        self.surface = ContactSurface(space, r_c * self.a_ref, (0, 1, 2), fixed)
         self.top = ContactSurface(space, np.inf, (2,), fixed)
-        pos = np.searchsorted(self.free, self.surface.dofs)
-        if not np.array_equal(self.free[pos], self.surface.dofs):
+        # The contact iteration needs the tangential DOFs only when the tangential
+        # tractions depend on them: friction with history, or any friction with the
+        # normal–tangential coupling of dissimilar materials.  Frictionless contact and
+        # full sliding of identical materials (traction = const * p_n, K = 0) are normal
+        # problems; their tangential tractions only load the blocks.
+        normal_only = self.law_mode == "frictionless" or (
+            self.law_mode == "sliding" and case.identical_materials
+        )
+        comps = (2,) if normal_only else (0, 1, 2)
+        self.cidx = np.nonzero(np.isin(self.surface.dof_comp, comps))[0]
+        cdofs = self.surface.dofs[self.cidx]
+        pos = np.searchsorted(self.free, cdofs)
+        if not np.array_equal(self.free[pos], cdofs):
             raise FemError("internal error: a condensed surface DOF is fixed")
         # stiffness, factorisation and condensation per distinct Poisson's ratio
         self.factor: dict[float, Factorization] = {}
@@ -213,7 +226,7 @@ class FemModel:
                 log(f"nu={nu}: {Kff.shape[0]} free DOFs, assembly {tb - ta:.1f} s, "
                     f"factorisation {tc - tb:.1f} s, "
                     f"condensation ({pos.size} DOFs) {td - tc:.1f} s")
-        Rz = np.where(self.surface.dof_comp == 2, -1.0, 1.0)
+        Rz = np.where(self.surface.dof_comp[self.cidx] == 2, -1.0, 1.0)
         Crel = (Rz[:, None] * C1[case.a.nu] * Rz[None, :]) / case.a.E + C1[case.b.nu] / case.b.E
         self.Crel = Crel
         cho = la.cho_factor(Crel)
@@ -259,7 +272,7 @@ class FemModel:
     def body_displacements(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Block-frame displacements (E = 1 scaling removed) of bodies a and b.
 
-        ``f``: condensed nodal forces on body a (global frame).  Returns the true
+        ``f``: nodal forces on body a at all surface DOFs (global frame).  Returns the true
         displacement fields (3 * nnodes,) of a and b, each in its own block frame.
         """
         case = self.case

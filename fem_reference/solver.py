@@ -13,23 +13,32 @@ Load path:
   step.  Output steps: ``step = round(s / sliding_wear.step)`` for s = 0, the
   ``output_s`` distances and the total distance (every step if ``output_s`` is empty).
 
-Surface fields on the case grid (cell centres; a quarter/half model is mirrored):
+Surface fields on the case grid (cell centres; a quarter/half model is mirrored, and
+components odd under a mirror vanish on the mirror plane):
 ``p_n, p_x, p_y`` are the L2 projections of the Gauss-point penalty tractions on the P2
-surface space (zero where the point is open); ``gap`` from the full FE displacements;
-``state`` and ``wear_a/b`` from the contact law evaluated at the grid points with their
-own history; ``slip_x/y`` the relative tangential displacement increment of the step
-(tangential loading: since the end of the normal loading; static full sliding: the unit
-slip direction).  Scalars: ``P, Qx, Qy`` the resultants of the Gauss-point tractions,
-``contact_area``/``stick_area`` integrals of the Gauss-point states, ``a_x, a_y`` from
-the zero crossings of the gap on fine lines through the centre, ``p_max`` the largest
-nodal value of the projected pressure, ``vm_max`` over both planes; ``wall_s`` is the
-time since ``solve`` started; ``approach`` the rigid approach δ.
+surface space, zero outside the contact; ``gap`` from the full FE displacements;
+``state``: a cell is closed inside the contact boundary r(θ), the outermost point with
+a gap below ``GAP_TOL`` × δ0 along rays from the centre (robust against the penalty:
+see :func:`contact_states`), stick or slip by the return map evaluated at the cell
+centre with its own history; ``wear_a/b`` likewise; ``slip_x/y`` the relative
+tangential displacement increment of the step (tangential loading: since the end of the
+normal loading; static full sliding: the unit slip direction).
+
+Scalars: ``P, Qx, Qy`` the resultants of the Gauss-point tractions; ``contact_area`` the
+area inside r(θ), ``stick_area`` the Gauss-point integral of the stick states,
+``slip_area`` the rest; ``a_x, a_y`` half the closed length of the lines through the
+centre; ``p_max`` the largest nodal value of the projected pressure; ``vm_max`` and its
+location over both planes (the plane samples); ``wall_s`` the time since ``solve``
+started.  Extra: ``approach`` (δ), ``shift_x/y`` (g_t,o), ``P_reaction`` (the support
+reaction of the block: global equilibrium), ``vm_axis_max``/``vm_axis_z`` (the on-axis
+σ_VM maximum and its depth from a least-squares cubic, :func:`axis_peak`).
 
 Extra outputs: ``RunResult.tables["axis/<step>"]`` holds the stresses on the load axis
 (x0, y0) at 8x the plane resolution in depth; ``tables["line_x/<step>"]`` and
-``["line_y/<step>"]`` the projected pressure and the gap along the lines through the
-centre; ``RunResult.meta["vtu"]`` a list of ``(step, meshio.Mesh)`` with the FE fields
-of the reported body (write them with :func:`fem_reference.vtu.write_vtu`).
+``["line_y/<step>"]`` the projected tractions, the gap and the states along the lines
+through the centre; ``RunResult.meta["vtu"]`` a list of ``(step, meshio.Mesh)`` with the
+FE fields of the reported body (write them with :func:`fem_reference.vtu.write_vtu`);
+``meta`` also gives the model (quarter/half/full), DOFs, penalty and timings.
 """
 
 from __future__ import annotations
@@ -135,7 +144,8 @@ class _Run:
         self.t0 = time.perf_counter()
         surf = m.surface
         R = case.R
-        self.quad = Points(G=surf.operator(surf.Nq), w=surf.quad_w, xy=surf.quad_xy,
+        self.Gq_full = surf.operator(surf.Nq)  # all surface DOFs (forces on the blocks)
+        self.quad = Points(G=self.Gq_full[:, m.cidx].tocsr(), w=surf.quad_w, xy=surf.quad_xy,
                            h=(surf.quad_xy**2).sum(axis=1) / (2 * R),
                            inside=np.ones(surf.quad_w.size, bool))
         # probes: grid cell centres, then the x and y lines through the centre
@@ -161,7 +171,7 @@ class _Run:
         mapped, self.sx, self.sy = m.sym.map(xy)
         N, found = surf.interpolation(mapped)
         self.Nprobe = N
-        self.probes = Points(G=surf.operator(N), w=np.zeros(xy.shape[0]), xy=xy,
+        self.probes = Points(G=surf.operator(N)[:, m.cidx].tocsr(), w=np.zeros(xy.shape[0]), xy=xy,
                              h=(xy**2).sum(axis=1) / (2 * R), inside=found)
         Ntop, found_top = m.top.interpolation(mapped)
         if not found_top.all():
@@ -317,8 +327,7 @@ class _Run:
         quad, ev = self.quad, sol.ev
         sym = m.sym
         wt = np.concatenate([quad.w * ev.t[:, 0], quad.w * ev.t[:, 1], quad.w * ev.pn])
-        f = quad.G.T @ wt
-        ua, ub = m.body_displacements(f)
+        ua, ub = m.body_displacements(self.Gq_full.T @ wt)
         # gap on the probes from the full displacement fields
         nodes = m.top.nodes
         uza = self.Ntop @ ua.reshape(-1, 3)[nodes, 2]
@@ -369,6 +378,8 @@ class _Run:
             sl = slice(ng + k * nl, ng + (k + 1) * nl)
             self.tables[f"{name}/{step}"] = {
                 "s": self.line.copy(), "p_n": (self.Nprobe @ pn_nodes)[sl],
+                "p_x": (self.sx * (self.Nprobe @ tx_nodes))[sl],
+                "p_y": (self.sy * (self.Nprobe @ ty_nodes))[sl],
                 "gap": pev.gn[sl], "state": pstate[sl],
             }
         a_x = _semi_width(self.line, pev.gn[ng:ng + nl], pr.inside[ng:ng + nl], eps)
@@ -504,7 +515,7 @@ def solve(case: Case, progress: bool = False, *, vtu: bool = True, log=None) -> 
         "law": model.law_mode,
         "dofs": int(model.free.size),
         "elements": int(model.space.nel),
-        "surface_dofs": int(model.surface.ndofs),
+        "surface_dofs": int(model.cidx.size),
         "timings": {**model.timings, "total_s": time.perf_counter() - t0},
         "vtu": run.meshes,
     }

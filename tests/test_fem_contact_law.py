@@ -1,0 +1,167 @@
+"""The FEM contact laws at single points: friction return map, sliding, wear, tangents."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import scipy.sparse as sp
+
+from cases.model import Body, Friction
+from cases.result import OPEN, SLIP, STICK
+from fem_reference.contact import Law, Points, axes_tensor, evaluate, norm_with
+from fem_reference.model import wear_compliances
+
+pytestmark = pytest.mark.fem
+
+MU1, MU2, BETA = 0.25, 0.5, 30.0
+
+
+def friction_law(k_n=1e6, mode="friction"):
+    M2 = axes_tensor(MU1**2, MU2**2, BETA)
+    M2inv = axes_tensor(MU1**-2, MU2**-2, BETA)
+    return Law(k_n=k_n, mode=mode, k_t=k_n / MU1**2, M2=M2, M2inv=M2inv)
+
+
+def points(n, disp):
+    """n points whose displacement (n, 3) is given directly (G = identity blocks)."""
+    G = sp.identity(3 * n, format="csr")
+    pts = Points(G=G, w=np.ones(n), xy=np.zeros((n, 2)), h=np.zeros(n), inside=np.ones(n, bool))
+    u = np.asarray(disp, dtype=float).T.ravel()
+    return pts, u
+
+
+def test_ellipse_norms_follow_eqs_9_10():
+    t = np.array([0.3, -0.7])
+    R = np.array([[math.cos(math.radians(BETA)), math.sin(math.radians(BETA))],
+                  [-math.sin(math.radians(BETA)), math.cos(math.radians(BETA))]])
+    te = R @ t
+    law = friction_law()
+    assert norm_with(law.M2inv, t) == pytest.approx(math.hypot(te[0] / MU1, te[1] / MU2))
+    assert norm_with(law.M2, t) == pytest.approx(math.hypot(MU1 * te[0], MU2 * te[1]))
+
+
+def test_gross_slip_from_rest_is_eq_13():
+    """From rest, a large slip increment returns p_t = −p_n 𝕄² Δg / ‖Δg‖*_μ (Eq. 13)."""
+    law = friction_law()
+    rng = np.random.default_rng(4)
+    n = 20
+    dg = rng.normal(size=(n, 2)) * 1e-3
+    disp = np.column_stack([dg, np.full(n, 1e-4)])  # u_n = 1e-4 with δ = 2e-4: g_n = −1e-4
+    pts, u = points(n, disp)
+    ev = evaluate(law, pts, u, 2e-4, np.zeros(2))
+    pn = law.k_n * 1e-4
+    assert np.allclose(ev.pn, pn)
+    expected = -pn * (dg @ law.M2.T) / norm_with(law.M2, dg)[:, None]
+    assert np.allclose(ev.t, expected, rtol=1e-12, atol=1e-12 * pn)
+    assert np.allclose(norm_with(law.M2inv, ev.t), pn)  # on the ellipse (Eq. 9)
+    assert np.all(ev.state == SLIP)
+
+
+def test_return_map_slip_is_associated():
+    """From a stuck state, the plastic part of the slip is ∝ −𝕄⁻² p_t (normal to the ellipse)."""
+    law = friction_law()
+    pn = 100.0
+    t_old = np.array([[10.0, 5.0]])
+    dg = np.array([[2e-4, -1e-4]])
+    pts, u = points(1, np.column_stack([dg, [[-pn / law.k_n + 0.0]]]))
+    pts.t_old = t_old
+    ev = evaluate(law, pts, u, 0.0, np.zeros(2))
+    assert ev.pn[0] == pytest.approx(pn)
+    assert ev.state[0] == SLIP
+    # elastic relation t = t_old − k_t 𝕄² (Δg − Δg_p)  =>  Δg_p
+    dg_p = dg[0] - np.linalg.solve(law.k_t * law.M2, t_old[0] - ev.t[0])
+    normal = law.M2inv @ ev.t[0]
+    cross = dg_p[0] * normal[1] - dg_p[1] * normal[0]
+    assert abs(cross) < 1e-9 * np.linalg.norm(dg_p) * np.linalg.norm(normal)
+    assert dg_p @ normal < 0  # slip opposes the traction on body a
+
+
+def test_stick_and_open():
+    law = friction_law()
+    pts, u = points(2, [[1e-9, 0.0, -1e-4], [0.0, 0.0, 1e-3]])
+    ev = evaluate(law, pts, u, 0.0, np.zeros(2))
+    assert ev.state[0] == STICK and ev.state[1] == OPEN
+    assert np.allclose(ev.t[0], -law.k_t * law.M2 @ np.array([1e-9, 0.0]))
+    assert ev.pn[1] == 0 and np.all(ev.t[1] == 0)
+
+
+def test_sliding_traction_erratum_11():
+    """Sliding along d resists with p_n ‖d‖*_μ along −d plus a component across d."""
+    law = friction_law()
+    d = np.array([1.0, 0.0])
+    c = -(law.M2 @ d) / norm_with(law.M2, d)
+    law = Law(k_n=law.k_n, mode="sliding", M2=law.M2, M2inv=law.M2inv, slide_traction=c)
+    pts, u = points(1, [[0.0, 0.0, -2e-4]])
+    ev = evaluate(law, pts, u, 0.0, np.zeros(2))
+    pn = ev.pn[0]
+    R = np.radians(BETA)
+    d_star = math.hypot(MU1 * math.cos(R) * d[0], MU2 * math.sin(R) * d[0])
+    assert -ev.t[0] @ d == pytest.approx(pn * d_star)
+    assert abs(ev.t[0, 1]) > 0.01 * pn  # β = 30°: not parallel to the slip (Eq. 38)
+    assert norm_with(law.M2inv, ev.t[0]) == pytest.approx(pn)
+
+
+@pytest.mark.parametrize("mode", ["friction", "sliding"])
+def test_consistent_tangents_match_finite_differences(mode):
+    rng = np.random.default_rng(0)
+    n, m = 60, 40
+    G = sp.csr_matrix(rng.normal(size=(3 * n, m)) * (rng.random((3 * n, m)) < 0.3))
+    pts = Points(G=G, w=np.ones(n), xy=np.zeros((n, 2)), h=rng.random(n) * 1e-3,
+                 inside=np.ones(n, bool))
+    pts.t_old = rng.normal(size=(n, 2)) * 10
+    pts.gt_old = rng.normal(size=(n, 2)) * 1e-4
+    law = friction_law(mode="friction")
+    if mode == "sliding":
+        d = np.array([0.6, 0.8])
+        c = -(law.M2 @ d) / norm_with(law.M2, d)
+        law = Law(k_n=law.k_n, mode="sliding", M2=law.M2, M2inv=law.M2inv, slide_traction=c)
+    u = rng.normal(size=m) * 1e-4
+    delta, D = 5e-4, np.array([1e-5, -2e-5])
+    ev = evaluate(law, pts, u, delta, D, cw=1e-7)
+    assert len(set(ev.state.tolist())) >= 2
+    eps = 1e-10
+
+    def stack(e):
+        return np.column_stack([e.t, e.pn])
+
+    v = rng.normal(size=m)
+    fd = (stack(evaluate(law, pts, u + eps * v, delta, D, cw=1e-7)) - stack(ev)) / eps
+    an = np.einsum("nij,nj->ni", ev.T, (G @ v).reshape(3, -1).T)
+    assert np.abs(fd - an).max() < 1e-5 * np.abs(an).max()
+    fd = (stack(evaluate(law, pts, u, delta + eps, D, cw=1e-7)) - stack(ev)) / eps
+    assert np.abs(fd - ev.Tdelta).max() < 1e-5 * np.abs(ev.Tdelta).max()
+    for c in range(2):
+        Dp = D.copy()
+        Dp[c] += eps
+        fd = (stack(evaluate(law, pts, u, delta, Dp, cw=1e-7)) - stack(ev)) / eps
+        assert np.abs(fd - ev.TD[:, :, c]).max() <= 1e-5 * max(np.abs(ev.TD).max(), 1.0)
+
+
+def test_wear_compliance_is_eq_19_21():
+    """‖Δg‖_i (Eq. 21) = i_w(θ) ‖Δg‖ with θ the slip angle from e1 (Eq. 19)."""
+    from types import SimpleNamespace
+
+    case = SimpleNamespace(
+        a=Body(E=1.0, nu=0.3, i1=1.33e-7, i2=2.66e-7),
+        b=Body(E=1.0, nu=0.3, i1=0.5e-7, i2=0.25e-7),
+        friction=Friction(mu1=0.25, mu2=0.5, beta=45.0),
+    )
+    dg = 2.0 * np.array([1.0, 0.0])  # slide 2 mm along +x: θ = −β
+    ca, cb = wear_compliances(case, dg)
+    th = math.radians(-45.0)
+    assert ca == pytest.approx(2.0 * math.hypot(1.33e-7 * math.cos(th), 2.66e-7 * math.sin(th)))
+    assert cb == pytest.approx(2.0 * math.hypot(0.5e-7 * math.cos(th), 0.25e-7 * math.sin(th)))
+
+
+def test_implicit_wear_softens_the_penalty():
+    """Backward-Euler wear: p_n = k/(1 + k c_w) ⟨−g⟩, so Δw = c_w p_n closes the gap."""
+    law = Law(k_n=1e6)
+    pts, u = points(1, [[0.0, 0.0, 0.0]])
+    cw = 1e-5
+    ev = evaluate(law, pts, u, 1e-3, np.zeros(2), cw=cw)
+    pn = ev.pn[0]
+    assert pn == pytest.approx(1e6 * 1e-3 / (1 + 1e6 * cw))
+    # the gap after wear, h + w + Δw − δ + u_n, is the penalty penetration −p_n/k_n
+    assert 0 + cw * pn - 1e-3 == pytest.approx(-pn / 1e6)

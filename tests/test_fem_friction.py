@@ -1,0 +1,135 @@
+"""FEM reference with friction: Cattaneo–Mindlin partial slip and the sliding sphere.
+
+References: Cattaneo–Mindlin (Johnson 1985 §7.2) stick radius c = a (1 − Q/μP)^(1/3) and
+traction q(r) = μ p0 √(1 − r²/a²) − (c/a) μ p0 √(1 − r²/c²) (r < c); full sliding:
+p_t = μ p_n against the slip, and for identical materials the pressure stays Hertzian;
+Hamilton (1983): the σ_VM maximum of the sliding sphere lies below the surface for small
+μ and jumps to the surface (trailing edge) above μ ≈ 0.3 (ν = 0.3).
+
+Fast tier: half block, h = a0/4, L = H = 10 a0.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import pytest
+
+from cases.loader import load_case
+from cases.model import FemSettings
+from cases.result import SLIP, STICK
+from fem_reference import solve
+
+pytestmark = pytest.mark.fem
+
+
+@functools.cache
+def cattaneo(h: float = 0.25, block: float = 10.0, penalty: float = 100.0):
+    case = load_case("cattaneo_mindlin", quick=True)[1]  # Q/(μP) = 0.5
+    case = case.with_changes(fem=FemSettings(block=block, depth=block, h=h, penalty=penalty))
+    return case, solve(case, vtu=False)
+
+
+@functools.cache
+def sliding(mu: float, h: float = 0.25, block: float = 10.0):
+    case = load_case("sliding_friction", quick=True, overrides={"friction.mu": mu})[0]
+    case = case.with_changes(fem=FemSettings(block=block, depth=block, h=h))
+    return case, solve(case, vtu=False)
+
+
+def hertz(case):
+    a0 = case.hertz_a0
+    return a0, 3 * case.load.P / (2 * math.pi * a0**2)
+
+
+def _check_cattaneo(case, res):
+    a0, p0 = hertz(case)
+    mu, P, Q = case.friction.mu1, case.load.P, case.load.Qx
+    assert Q / (mu * P) == pytest.approx(0.5)
+    h = case.fem.h * a0
+    sc = res.steps[0].scalars
+    assert res.meta["model"] == "half"
+    assert sc["P"] == pytest.approx(P, rel=1e-9) and sc["Qx"] == pytest.approx(Q, rel=1e-9)
+    assert sc["Qy"] == 0.0
+    c_ref = a0 * (1 - Q / (mu * P)) ** (1 / 3)
+    c_area = math.sqrt(sc["stick_area"] / math.pi)
+    line = res.tables["line_x/0"]
+    stick = line["state"] == STICK
+    c_line = 0.5 * (line["s"][stick].max() - line["s"][stick].min())
+    assert abs(c_area - c_ref) < 2 * h
+    assert abs(c_line - c_ref) < 2 * h
+    # the slip annulus slips, the centre sticks
+    st = res.steps[0].surface["state"]
+    g = case.grid
+    i0, j0 = np.argmin(np.abs(g.x)), np.argmin(np.abs(g.y))
+    assert st[i0, j0] == STICK
+    # tangential traction along x against Mindlin's, inside the contact
+    s = line["s"]
+    inside = np.abs(s) < 0.95 * a0
+    q = mu * p0 * np.sqrt(np.clip(1 - (s / a0) ** 2, 0, None)) - (c_ref / a0) * mu * p0 * np.sqrt(
+        np.clip(1 - (s / c_ref) ** 2, 0, None))
+    err = np.abs(line["p_x"] - q)[inside].max() / (mu * p0)
+    print(f"\nCattaneo-Mindlin Q/muP=0.5 h={case.fem.h}a0: stick radius (area) "
+          f"{c_area / a0:.4f} a0, (x line) {c_line / a0:.4f} a0, Mindlin {c_ref / a0:.4f} a0; "
+          f"max |p_x - q|/(mu p0) "
+          f"{err:.3f}; DOFs {res.meta['dofs']}, contact DOFs {res.meta['surface_dofs']}")
+    return err
+
+
+def test_cattaneo_mindlin_stick_radius():
+    case, res = cattaneo()
+    err = _check_cattaneo(case, res)
+    assert err < 0.2  # h = a0/4: the stick/slip kink and the edge lie within elements
+
+
+def test_sliding_low_friction_maximum_below_surface():
+    case, res = sliding(0.15)
+    a0, p0 = hertz(case)
+    sc = res.steps[0].scalars
+    mu, P = case.friction.mu1, case.load.P
+    assert sc["Qx"] == pytest.approx(-mu * P, rel=1e-9)  # traction on the sliding pin
+    assert abs(sc["p_max"] / p0 - 1) < 0.02  # identical materials: Hertzian pressure
+    assert sc["vm_max_z"] > 0.2 * a0
+    state = res.steps[0].surface["state"]
+    assert set(np.unique(state).tolist()) <= {0, SLIP}
+
+
+def test_sliding_high_friction_maximum_at_surface():
+    case, res = sliding(0.5)
+    a0, p0 = hertz(case)
+    sc = res.steps[0].scalars
+    assert sc["vm_max_z"] == 0.0
+    # at the trailing side of body b (its traction is +x: tensile σ_xx at x < 0)
+    assert -1.2 * a0 < sc["vm_max_x"] < 0
+    xz = res.steps[0].planes["xz"]
+    assert xz.fields["sxx"][:, 0].max() > 0 and xz.s[np.argmax(xz.fields["sxx"][:, 0])] < 0
+    low = sliding(0.15)[1].steps[0].scalars
+    assert sc["vm_max"] > low["vm_max"]
+    print(f"\nsliding: mu=0.15 vm_max/p0={low['vm_max'] / p0:.4f} at "
+          f"({low['vm_max_x'] / a0:.3f}, {low['vm_max_z'] / a0:.3f}) a0; mu=0.5 "
+          f"{sc['vm_max'] / p0:.4f} at ({sc['vm_max_x'] / a0:.3f}, {sc['vm_max_z'] / a0:.3f}) a0")
+
+
+@pytest.mark.full
+def test_cattaneo_mindlin_fine():
+    case, res = cattaneo(h=0.125, block=20.0)
+    err = _check_cattaneo(case, res)
+    assert err < 0.15
+
+
+@pytest.mark.full
+def test_orthotropic_sliding_full_block():
+    """β = 45°: p_t is not parallel to the slip (Eq. 38), the full block is needed."""
+    case = load_case("sliding_friction", quick=True,
+                     overrides={"friction": {"mu1": 0.25, "mu2": 0.5, "beta": 45.0}})[0]
+    case = case.with_changes(fem=FemSettings(block=10.0, depth=10.0, h=0.25))
+    res = solve(case, vtu=False)
+    sc = res.steps[0].scalars
+    assert res.meta["model"] == "full"
+    P = case.load.P
+    th = math.radians(45.0)
+    d_star = math.hypot(0.25 * math.cos(th), 0.5 * math.sin(th))
+    assert -sc["Qx"] == pytest.approx(P * d_star, rel=1e-9)
+    assert abs(sc["Qy"]) > 0.05 * P
