@@ -125,3 +125,23 @@ def test_body_b_is_the_mirror_of_body_a():
     b = StressEvaluator(grid, z, 0.3, "b").block(p_n, zero, zero)
     assert np.allclose(a["sxz"], -b["sxz"], atol=1e-12)
     assert np.allclose(a["sxx"], -b["sxx"], atol=1e-12)
+
+
+def test_refinement_of_the_von_mises_maximum():
+    """Issue 2: the on-axis sigma_VM-maximum error decreases over three grids (layers
+    0.004 a0 apart around the maximum, so the grid, not the depth sampling, dominates);
+    the observed orders are printed."""
+    from halfspace.solver import contact_solver, profile
+
+    ref, _ = axis_vm_max(0.3)
+    errs = []
+    for n in (21, 41, 81):
+        case = load_case("hertz", overrides={"grid.nx": n, "grid.ny": n})[0]
+        p0, a0 = p0_a0(case)
+        sol = contact_solver(case).solve(profile(case), P=case.load.P).state
+        ev = StressEvaluator(case.grid, np.linspace(0.40 * a0, 0.56 * a0, 41), 0.3, "b")
+        vm = ev.planes(sol.p_x, sol.p_y, sol.p_n)["xz"].vm_max()[0]
+        errs.append(abs(vm / p0 / ref - 1))
+    orders = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
+    print(f"sigma_VM,max errors {errs}, observed orders {orders}")
+    assert errs[0] > errs[1] > errs[2]
