@@ -27,7 +27,7 @@ _PACKAGES = (
     "contact-vv", "numpy", "scipy", "pandas", "matplotlib", "tqdm", "meshio",
     "scikit-fem", "gmsh", "pypardiso", "dask", "distributed",
 )
-_THREAD_VARS = (
+THREAD_VARS = (
     "OMP_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "NUMEXPR_NUM_THREADS",
     "VECLIB_MAXIMUM_THREADS",
 )
@@ -59,7 +59,7 @@ def versions() -> dict[str, str]:
 def threads() -> dict[str, Any]:
     """The thread settings that can change floating-point results."""
     info: dict[str, Any] = {"cpu_count": os.cpu_count()}
-    for var in _THREAD_VARS:
+    for var in THREAD_VARS:
         if var in os.environ:
             info[var] = os.environ[var]
     try:

@@ -142,6 +142,35 @@ def plan_sweep(ref: str | Path, params: list[tuple[str, list[Any]]], solver_name
                      points=cases, sweep=sweep, dir_name=sweep_dir_name(cases[0].name, params))
 
 
+def _thread_env() -> dict[str, str | None]:
+    """The thread-count variables of this process (None where unset)."""
+    import os
+
+    from .manifest import THREAD_VARS
+
+    return {var: os.environ.get(var) for var in THREAD_VARS}
+
+
+def worker_environ() -> dict[str, Any]:
+    """Dask's pre-spawn environment for worker processes, with the thread-count variables
+    of this process instead of Dask's default of one thread: a worker then computes with
+    the same BLAS/OpenMP threading as a serial run in this process, so the floating-point
+    results are bit-identical (a solver's reductions may depend on the thread count)."""
+    import os
+
+    import dask
+
+    from .manifest import THREAD_VARS
+
+    environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}) or {})
+    for var in THREAD_VARS:
+        if var in os.environ:
+            environ[var] = os.environ[var]
+        else:
+            environ.pop(var, None)
+    return environ
+
+
 class DaskExecutor:
     """Run the units of a plan as tasks on a dask.distributed cluster.
 
@@ -169,12 +198,16 @@ class DaskExecutor:
                 raise UserError(f"cannot reach the Dask scheduler {self.scheduler}: {exc}") \
                     from None
         else:
-            self.cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1,
-                                        processes=True, dashboard_address=None)
+            import dask
+
+            with dask.config.set({"distributed.nanny.pre-spawn-environ": worker_environ()}):
+                self.cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1,
+                                            processes=True, dashboard_address=None)
             self.client = Client(self.cluster)
         workers = self.client.scheduler_info().get("workers", {})
         self.info = {"scheduler": self.scheduler or "LocalCluster", "workers": len(workers),
-                     "threads": sum(w.get("nthreads", 0) for w in workers.values())}
+                     "threads": sum(w.get("nthreads", 0) for w in workers.values()),
+                     "worker_thread_env": self.client.run(_thread_env)}
         return self
 
     def __exit__(self, *exc: object) -> None:

@@ -46,6 +46,18 @@ def test_sweep_points_replace_the_file_sweep(tmp_path):
         sweep_points(case, [parse_param("grid.nx=20,40"), parse_param("grid.ny=20")])
 
 
+def test_workers_get_this_process_thread_settings(monkeypatch):
+    pytest.importorskip("distributed")
+    from reports.sweep import worker_environ
+
+    monkeypatch.setenv("OPENBLAS_NUM_THREADS", "3")
+    monkeypatch.delenv("OMP_NUM_THREADS", raising=False)
+    env = worker_environ()
+    assert env["OPENBLAS_NUM_THREADS"] == "3"
+    assert "OMP_NUM_THREADS" not in env  # Dask's default of 1 removed: library default
+    assert "MALLOC_TRIM_THRESHOLD_" in env  # Dask's other settings kept
+
+
 def test_dask_sweep_matches_serial(tmp_path, monkeypatch, capsys):
     pytest.importorskip("distributed")
     fakes.use(monkeypatch, ic="solve_ic", analytic="solve_exact")
@@ -68,6 +80,10 @@ def test_dask_sweep_matches_serial(tmp_path, monkeypatch, capsys):
 
     mf = json.loads((tmp_path / "dask" / name / "manifest.json").read_text())
     assert mf["executor"]["workers"] == 2 and mf["executor"]["threads"] == 2
+    # the workers compute with this process's BLAS/OpenMP thread settings
+    from reports.sweep import _thread_env
+
+    assert list(mf["executor"]["worker_thread_env"].values()) == [_thread_env()] * 2
     assert mf["sweep"]["keys"] == ["friction.mu"]
     assert (tmp_path / "dask" / name / "sweep.png").is_file()
     check = json.loads((tmp_path / "dask" / name / "sweep_check.json").read_text())
