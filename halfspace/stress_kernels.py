@@ -198,3 +198,31 @@ def _antiderivative_x(x, y, z, nu) -> dict[str, np.ndarray]:
 def _antiderivative_y_swapped(x, y, z, nu) -> dict[str, np.ndarray]:
     """T̄^Sy (Eq. 48, erratum 7) in swapped axes: T̄^Sx(y, x, z), relabelled by the caller."""
     return _antiderivative_x(y, x, z, nu)
+
+
+def coefficient_table(kx: tuple[int, int], ky: tuple[int, int], z: float, dx: float,
+                      dy: float, nu: float) -> dict[str, dict[str, np.ndarray]]:
+    """:func:`cell_stress_coefficients` for every integer offset (i dx, j dy), i in
+    [kx[0], kx[1]], j in [ky[0], ky[1]], as arrays indexed [i - kx[0], j - ky[0]].
+
+    Neighbouring cells share corners, so the antiderivatives of Eq. 44-48 are evaluated
+    once on the corner lattice ((i ± 1/2) dx, (j ± 1/2) dy) and differenced: a quarter of
+    the work of the corner sums cell by cell.  Corners never lie on x = 0 or y = 0, so
+    z = 0 (surface values at cell centres) is regular here.
+    """
+    if z < 0 or not np.isfinite(z):
+        raise ValueError("depth z must be finite and >= 0")
+    xc = (np.arange(kx[0], kx[1] + 2) - 0.5)[:, None] * dx
+    yc = (np.arange(ky[0], ky[1] + 2) - 0.5)[None, :] * dy
+    zz = np.full(np.broadcast_shapes(xc.shape, yc.shape), float(z))
+
+    def differenced(antiderivative, x, y):
+        T = antiderivative(x, y, zz, nu)
+        return {c: (T[c][1:, 1:] - T[c][1:, :-1] - T[c][:-1, 1:] + T[c][:-1, :-1])
+                / (2.0 * np.pi) for c in STRESS_COMPONENTS}
+
+    return {
+        "x": differenced(_antiderivative_x, xc, yc),
+        "y": _swap_xy(differenced(_antiderivative_y_swapped, xc, yc)),
+        "n": differenced(_antiderivative_n, xc, yc),
+    }

@@ -20,8 +20,8 @@ import scipy.fft as sfft
 from cases.model import Grid
 from cases.result import STRESS_COMPONENTS, Plane, von_mises
 
-from .operator import WORKERS, kernel_spectrum, offsets, padded_shape
-from .stress_kernels import cell_stress_coefficients
+from .operator import WORKERS, padded_shape
+from .stress_kernels import coefficient_table
 
 LOADS = ("x", "y", "n")
 
@@ -61,23 +61,20 @@ class StressEvaluator:
             return self._plane_cache[key]
         g = self.grid
         ysign, _, _ = _signs(self.body)
-        if along == "x":
-            n, d, t = g.nx, g.dx, g.y
-        else:
-            n, d, t = g.ny, g.dy, g.x
+        n, nt = (g.nx, g.ny) if along == "x" else (g.ny, g.nx)
         m = sfft.next_fast_len(2 * n - 1, real=True)
-        so = offsets(n, d, m)[:, None]
-        to = (t[j0] - t)[None, :]
-        mask = np.zeros(m, bool)
-        mask[:n] = True
-        mask[m - n + 1 :] = True
+        ks = wrap_offsets(n, m)  # cell offsets along the plane, FFT order
+        kt = j0 - np.arange(nt)  # offsets across the plane
         spectra = []
         for z in self.z:
-            xo, yo = (so, to) if along == "x" else (to, so)
-            B = cell_stress_coefficients(xo, ysign * yo, z, g.dx, g.dy, self.nu)
+            if along == "x":
+                kx, ky = ks[:, None], ysign * kt[None, :]
+            else:
+                kx, ky = kt[None, :], ysign * ks[:, None]
+            B = _table_lookup(kx, ky, z, g.dx, g.dy, self.nu)
+            valid = (np.abs(ks) < n)[:, None]
             spectra.append({
-                (ld, c): sfft.rfft(np.where(mask[:, None], B[ld][c], 0.0), axis=0,
-                                   workers=WORKERS)
+                (ld, c): sfft.rfft(np.where(valid, B[ld][c], 0.0), axis=0, workers=WORKERS)
                 for ld in LOADS for c in STRESS_COMPONENTS
             })
         out = {"m": m, "n": n, "spectra": spectra}
@@ -116,15 +113,36 @@ class StressEvaluator:
         g = self.grid
         ysign, sx, flip = _signs(self.body)
         shape = padded_shape(g.nx, g.ny)
-        xo = offsets(g.nx, g.dx, shape[0])[:, None]
-        yo = offsets(g.ny, g.dy, shape[1])[None, :]
+        kx, ky = wrap_offsets(g.nx, shape[0]), wrap_offsets(g.ny, shape[1])
+        valid = (np.abs(kx) < g.nx)[:, None] & (np.abs(ky) < g.ny)[None, :]
         F = {k: sfft.rfft2(v, s=shape, workers=WORKERS)
              for k, v in {"x": sx * p_x, "y": p_y, "n": p_n}.items()}
         out = {c: np.empty((g.nx, g.ny, self.z.size)) for c in STRESS_COMPONENTS}
         for k, z in enumerate(self.z):
-            B = cell_stress_coefficients(xo, ysign * yo, z, g.dx, g.dy, self.nu)
+            B = _table_lookup(kx[:, None], ysign * ky[None, :], z, g.dx, g.dy, self.nu)
             for c in STRESS_COMPONENTS:
-                acc = sum(kernel_spectrum(np.broadcast_to(B[ld][c], shape), shape,
-                                          (g.nx, g.ny)) * F[ld] for ld in LOADS)
+                acc = sum(sfft.rfft2(np.where(valid, B[ld][c], 0.0), workers=WORKERS) * F[ld]
+                          for ld in LOADS)
                 out[c][:, :, k] = sfft.irfft2(acc, s=shape, workers=WORKERS)[: g.nx, : g.ny]
         return _finish(out, flip)
+
+
+def wrap_offsets(n: int, m: int) -> np.ndarray:
+    """Integer cell offsets in FFT (wrap-around) order for length m: 0..n-1, then the
+    unused middle (marked n, outside the kernel), then -(n-1)..-1."""
+    k = np.full(m, n)
+    k[:n] = np.arange(n)
+    k[m - n + 1 :] = np.arange(-(n - 1), 0)
+    return k
+
+
+def _table_lookup(kx: np.ndarray, ky: np.ndarray, z: float, dx: float, dy: float,
+                  nu: float) -> dict[str, dict[str, np.ndarray]]:
+    """Stress coefficients at the integer offsets (kx, ky) (broadcast) from one
+    :func:`coefficient_table` over their range."""
+    kx, ky = np.rint(kx).astype(np.int64), np.rint(ky).astype(np.int64)
+    lo_x, hi_x = int(kx.min()), int(kx.max())
+    lo_y, hi_y = int(ky.min()), int(ky.max())
+    table = coefficient_table((lo_x, hi_x), (lo_y, hi_y), z, dx, dy, nu)
+    ix, iy = np.broadcast_arrays(kx - lo_x, ky - lo_y)
+    return {ld: {c: arr[ix, iy] for c, arr in comps.items()} for ld, comps in table.items()}

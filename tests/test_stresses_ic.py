@@ -145,3 +145,19 @@ def test_refinement_of_the_von_mises_maximum():
     orders = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
     print(f"sigma_VM,max errors {errs}, observed orders {orders}")
     assert errs[0] > errs[1] > errs[2]
+
+
+@pytest.mark.parametrize("z", [0.0, 0.004, 0.05])
+def test_coefficient_table_equals_cell_corner_sums(z):
+    """The corner-lattice table (shared corners) equals the cell-by-cell corner sums of
+    Eq. 43-48, including the surface values at cell centres."""
+    from halfspace.stress_kernels import cell_stress_coefficients, coefficient_table
+
+    dx, dy, nu = 0.02, 0.03, 0.28
+    table = coefficient_table((-5, 7), (-3, 4), z, dx, dy, nu)
+    i, j = np.arange(-5, 8)[:, None], np.arange(-3, 5)[None, :]
+    ref = cell_stress_coefficients(i * dx, j * dy, z, dx, dy, nu)
+    for load, comps in table.items():
+        for c, arr in comps.items():
+            scale = max(np.abs(ref[load][c]).max(), 1e-3)
+            assert np.abs(arr - ref[load][c]).max() < 1e-12 * scale, (load, c)
