@@ -92,6 +92,9 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
     for case in results.complete:
         for solver, reason in case.manifest.get("skipped", {}).items():
             print(f"note: {case.name}: solver {solver} not run ({reason})", file=stream)
+        if case.manifest.get("sources_changed_during_run"):
+            print(f"note: {case.name}: solver sources changed during the run; its numbers "
+                  "may mix two versions (re-run)", file=stream)
         if stale_case_file(case.manifest):
             print(f"note: {case.name}: the case file {case.manifest.get('case_file')} changed "
                   "since the run (re-run to check the current version)", file=stream)

@@ -268,6 +268,9 @@ def provenance_html(mf: dict[str, Any]) -> str:
         ("git commit", f"{git.get('commit')}" + (" (uncommitted changes)"
                                                   if git.get("dirty") else "")),
         ("date (UTC)", prov.get("date")), ("versions", versions),
+        ("source SHA-256", ", ".join(f"{k} {v[:12]}" for k, v in
+                                     (mf.get("sources") or {}).items())
+         + (" — CHANGED DURING THE RUN" if mf.get("sources_changed_during_run") else "")),
         ("threads", ", ".join(f"{k}={v}" for k, v in threads.items()
                               if k != "threadpools")),
         ("executor", mf.get("executor", "serial")),

@@ -92,6 +92,25 @@ def git_state(where: Path | None = None) -> dict[str, Any]:
     return {"commit": commit, "dirty": bool(status) if status is not None else None}
 
 
+#: packages whose source code determines the numbers of a run
+SOURCE_PACKAGES = ("halfspace", "fem_reference", "cases", "reports")
+
+
+def source_hashes(root: Path | None = None) -> dict[str, str]:
+    """SHA-256 over the Python sources of each package (uncommitted edits included)."""
+    root = root or Path(__file__).resolve().parent.parent
+    out = {}
+    for package in SOURCE_PACKAGES:
+        h = hashlib.sha256()
+        files = sorted((root / package).rglob("*.py"))
+        for f in files:
+            h.update(f.relative_to(root).as_posix().encode())
+            h.update(f.read_bytes())
+        if files:
+            out[package] = h.hexdigest()
+    return out
+
+
 def provenance() -> dict[str, Any]:
     """Date, git state, versions, threads and host of the current process."""
     return {

@@ -395,6 +395,7 @@ def execute(plan: CasePlan, out: Path, *, executor: Executor = serial_executor,
     """
     out = Path(out)
     t0 = time.perf_counter()
+    sources = manifest.source_hashes()
     staging = claim_staging(out, plan.dir_name)
     final = layout.case_dir(out, plan.dir_name)
     if final.exists() and not (final.is_dir() and layout.only_own_files(final)):
@@ -488,6 +489,8 @@ def execute(plan: CasePlan, out: Path, *, executor: Executor = serial_executor,
         "wall_s": time.perf_counter() - t0,
         "unit_wall_s": unit_wall,
         "provenance": manifest.provenance(),
+        "sources": sources,
+        "sources_changed_during_run": manifest.source_hashes() != sources,
         **(extra_manifest or {}),
     }
     (staging / ".pid").unlink(missing_ok=True)

@@ -86,6 +86,7 @@ def test_run_writes_the_contract_layout(tmp_path, fake):
     assert {"date", "git", "versions", "threads"} <= set(prov)
     assert prov["versions"]["numpy"] == np.__version__
     assert {"fields/ic/base/step_0000.npz", "summary.csv", "metrics.csv"} <= set(mf["files"])
+    assert set(mf["sources"]) >= {"cases", "reports"} and len(mf["sources"]["reports"]) == 64
     assert not layout.staging_dir(out, "small").exists()
 
 
@@ -161,6 +162,18 @@ def test_gate_notes_a_changed_case_file(tmp_path, fake, capsys):
     capsys.readouterr()
     assert main(["gate", "--out", str(out)]) == 0  # a note, not a failure
     assert f"note: small: the case file {case} changed since the run" in capsys.readouterr().out
+
+
+def test_sources_edited_during_a_run_are_flagged(tmp_path, fake, monkeypatch, capsys):
+    versions = iter([{"halfspace": "a" * 64}, {"halfspace": "b" * 64}])
+    monkeypatch.setattr(manifest, "source_hashes", lambda: next(versions))
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path)), "--out", str(out)) == 0
+    mf = manifest.read(out / "small")
+    assert mf["sources"] == {"halfspace": "a" * 64} and mf["sources_changed_during_run"]
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out)]) == 0
+    assert "note: small: solver sources changed during the run" in capsys.readouterr().out
 
 
 def test_pair_specific_tolerance_key(tmp_path, fake, capsys):
