@@ -9,8 +9,10 @@ p_n and the update of step (III), ``p_t <- P_E(p_t - r_t M^2 dg_t)``, is exactly
 projected gradient ``q <- P_disc(q - r_t M R dg_t)``.  Two solvers share that map:
 
 - ``method="uzawa"``: the fixed-point iteration of section 3.4 with r_t = 1/L;
-- ``method="cg"``: the same map with Nesterov acceleration and adaptive restart
-  (FISTA; Beck & Teboulle 2009, O'Donoghue & Candes 2015), O(sqrt(kappa)) iterations.
+- ``method="cg"``: accelerated projected gradient (FISTA with adaptive restart; Beck &
+  Teboulle 2009, O'Donoghue & Candes 2015) on the same problem in the unscaled tractions,
+  with the Euclidean projection onto each ellipse: O(sqrt(kappa)) iterations, and the
+  scaling by M (which multiplies the condition number by (mu2/mu1)^2) avoided.
 
 Both stop on the natural-map residual of Eq. 16,
 ``||p_t - P_E(p_t - c_t M^2 dg_t)|| / ||p_n||`` with c_t = 1/A_tt,self.
@@ -53,6 +55,34 @@ def _disc(q1, q2, rho):
     return q1 * s, q2 * s
 
 
+def _ellipse(y1, y2, a, b, iters: int = 100):
+    """Euclidean projection onto the ellipses (v1/a)^2 + (v2/b)^2 <= 1 (a, b >= 0):
+    v_i = a_i^2 y_i / (a_i^2 + t) with t >= 0 the root of the secular equation
+    sum (a_i y_i / (a_i^2 + t))^2 = 1, by Newton from t = 0 (monotone: the left side is
+    convex and decreasing in t)."""
+    a2, b2 = a * a, b * b
+    live = (a > 0) & (b > 0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        outside = live & ((y1 * y1) / np.where(live, a2, 1) + (y2 * y2) / np.where(live, b2, 1)
+                          > 1.0)
+    t = np.zeros_like(y1)
+    if np.any(outside):
+        A1, A2 = (a * y1)[outside] ** 2, (b * y2)[outside] ** 2
+        aa, bb = a2[outside], b2[outside]
+        tt = np.zeros_like(aa)
+        for _ in range(iters):
+            d1, d2 = aa + tt, bb + tt
+            f = A1 / d1**2 + A2 / d2**2 - 1.0
+            step = f / (2.0 * (A1 / d1**3 + A2 / d2**3))
+            tt = tt + step
+            if np.all(np.abs(step) <= 1e-15 * (tt + aa + bb)):
+                break
+        t[outside] = tt
+    v1 = np.where(live, y1 * a2 / np.where(live, a2 + t, 1.0), 0.0)
+    v2 = np.where(live, y2 * b2 / np.where(live, b2 + t, 1.0), 0.0)
+    return v1, v2
+
+
 def solve_tangential(
     apply_tt: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
     b_x: np.ndarray,
@@ -72,27 +102,37 @@ def solve_tangential(
     if mu1 == 0 or not np.any(p_n > 0):
         z = np.zeros_like(p_n)
         return TangentialSolution(z, z.copy(), b_x.copy(), b_y.copy(), 0, 0.0)
-    step = 1.0 / (L * max(mu1, mu2) ** 2)
+    accelerate = method == "cg"
+    if accelerate:
+        # Euclidean metric: v = p_t in the axes (e1, e2), projection onto the ellipses
+        s1 = s2 = 1.0
 
-    def traction(q1, q2):
-        return from_axes(mu1 * q1, mu2 * q2, beta)
+        def proj(v1, v2):
+            return _ellipse(v1, v2, mu1 * p_n, mu2 * p_n)
+    else:
+        # section 3.4 (III): v = q = M^-1 R p_t, projection onto discs of radius p_n
+        s1, s2 = mu1, mu2
 
-    def slip(q1, q2):
-        px, py = traction(q1, q2)
+        def proj(v1, v2):
+            return _disc(v1, v2, p_n)
+
+    step = 1.0 / (L * max(s1, s2) ** 2)
+
+    def slip(v1, v2):
+        px, py = from_axes(s1 * v1, s2 * v2, beta)
         ux, uy = apply_tt(px, py)
         return px, py, ux + b_x, uy + b_y
 
     def grad(dg_x, dg_y):
         g1, g2 = to_axes(dg_x, dg_y, beta)
-        return mu1 * g1, mu2 * g2
+        return s1 * g1, s2 * g2
 
     if p0 is None:
         q1 = q2 = np.zeros_like(p_n)
     else:
         a1, a2 = to_axes(*p0, beta)
-        q1, q2 = _disc(a1 / mu1, a2 / mu2, p_n)
+        q1, q2 = proj(a1 / s1, a2 / s2)
     y1, y2, t = q1, q2, 1.0
-    accelerate = method == "cg"
     res = np.inf
     for it in range(1, max_iter + 1):
         px, py, dgx, dgy = slip(y1, y2)
@@ -108,7 +148,7 @@ def solve_tangential(
                 px, py, dgx, dgy = slip(q1, q2)
                 return TangentialSolution(px, py, dgx, dgy, it, res)
         g1, g2 = grad(dgx, dgy)
-        n1, n2 = _disc(y1 - step * g1, y2 - step * g2, p_n)
+        n1, n2 = proj(y1 - step * g1, y2 - step * g2)
         if accelerate:
             # gradient restart: drop momentum when it points uphill
             if np.vdot(y1 - n1, n1 - q1) + np.vdot(y2 - n2, n2 - q2) > 0:
