@@ -8,14 +8,19 @@ Public API:
   solver name ``"fem"`` (see :mod:`fem_reference.solver` for the fields and load path);
 - :func:`write_vtu` ``(path, mesh)`` writes one of the ``RunResult.meta["vtu"]``
   ``(step, meshio.Mesh)`` meshes for ParaView; :func:`read_vtu` reads it back;
-- :class:`FemError` (case the model cannot represent, mesh failure) and
+- :class:`FemUnsupported` (a ``CaseError``: the case needs a feature the model does not
+  have, e.g. fretting or P1), :class:`FemError` (a failure such as the contact leaving
+  the FE contact zone), :class:`MeshError` (gmsh failed) and
   :class:`ContactConvergenceError` (contact iteration failed; message has the residual).
 """
 
 from .contact import ContactConvergenceError
 from .mesh import MeshError
-from .model import FemError
+from .model import FemError, FemUnsupported
 from .solver import solve
 from .vtu import read_vtu, write_vtu
 
-__all__ = ["solve", "write_vtu", "read_vtu", "FemError", "MeshError", "ContactConvergenceError"]
+__all__ = [
+    "solve", "write_vtu", "read_vtu", "FemError", "FemUnsupported", "MeshError",
+    "ContactConvergenceError",
+]

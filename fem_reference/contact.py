@@ -86,10 +86,10 @@ class Points:
     xy: np.ndarray  # (n, 2)
     h: np.ndarray  # indenter profile [mm]
     inside: np.ndarray  # points of the contact zone (others are never in contact)
-    wear_a: np.ndarray = None
-    wear_b: np.ndarray = None
-    t_old: np.ndarray = None  # traction at the last converged state (n, 2)
-    gt_old: np.ndarray = None  # tangential gap at the last converged state (n, 2)
+    wear_a: np.ndarray | None = None  # wear depths of the bodies (n,)
+    wear_b: np.ndarray | None = None
+    t_old: np.ndarray | None = None  # traction at the last converged state (n, 2)
+    gt_old: np.ndarray | None = None  # tangential gap at the last converged state (n, 2)
 
     def __post_init__(self) -> None:
         n = self.w.size

@@ -24,6 +24,7 @@ carry roller conditions (zero normal displacement).
 from __future__ import annotations
 
 import math
+import os
 import time
 from dataclasses import dataclass
 
@@ -39,7 +40,11 @@ from .surface import ContactSurface
 
 
 class FemError(RuntimeError):
-    """The FEM reference cannot solve this case (the message names the cause)."""
+    """The FEM reference failed on this case (the message names the cause)."""
+
+
+class FemUnsupported(FemError, CaseError):
+    """The case needs a feature the FEM reference does not have (also a CaseError)."""
 
 
 def reference_length(case: Case) -> float:
@@ -86,7 +91,6 @@ def choose_shape(case: Case) -> str:
         return "quarter"
     beta = fr.beta % 90.0
     aligned = fr.isotropic or min(beta, 90.0 - beta) < 1e-12
-    wear_aligned = all(b.i1 == b.i2 for b in (case.a, case.b)) or aligned
     if mode == "none" and case.kind == "static" and aligned:
         return "quarter"
     along_x = False
@@ -98,7 +102,7 @@ def choose_shape(case: Case) -> str:
         along_x = abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
     if case.kind == "fretting":
         along_x = along_x or mode == "none"
-    if aligned and wear_aligned and along_x:
+    if aligned and along_x:
         return "half"
     return "full"
 
@@ -133,6 +137,93 @@ class Symmetry:
         return xy, sx, sy
 
 
+def _cache_enabled() -> bool:
+    return os.environ.get("CONTACT_VV_FEM_CACHE", "1") not in ("0", "", "no", "false")
+
+
+class _Core:
+    """The case-independent part of a model: mesh, P2 space, supports, factorisations
+    and the condensed one-block compliances C₁(ν) (E = 1) of the contact DOFs."""
+
+    def __init__(self, spec: MeshSpec, a_ref: float, comps: tuple[int, ...],
+                 nus: tuple[float, ...], log=None):
+        t0 = time.perf_counter()
+        self.mesh = block_mesh(spec, a_ref)
+        t_mesh = time.perf_counter()
+        self.space = space = P2Space(self.mesh)
+        nodes = space.nodes
+        tol = 1e-9 * a_ref
+        fixed = np.zeros(space.ndofs, dtype=bool)
+        bottom = np.nonzero(np.abs(nodes[2] + spec.H * a_ref) < tol)[0]
+        fixed[(3 * bottom[:, None] + np.arange(3)).ravel()] = True
+        if spec.shape == "quarter":
+            fixed[3 * np.nonzero(np.abs(nodes[0]) < tol)[0]] = True
+        if spec.shape in ("quarter", "half"):
+            fixed[3 * np.nonzero(np.abs(nodes[1]) < tol)[0] + 1] = True
+        self.fixed = fixed
+        self.free = np.nonzero(~fixed)[0]
+        self.surface = ContactSurface(space, spec.r_ref * a_ref, (0, 1, 2), fixed)
+        self.top = ContactSurface(space, np.inf, (2,), fixed)
+        self.cidx = np.nonzero(np.isin(self.surface.dof_comp, comps))[0]
+        cdofs = self.surface.dofs[self.cidx]
+        pos = np.searchsorted(self.free, cdofs)
+        if not np.array_equal(self.free[pos], cdofs):
+            raise FemError("internal error: a condensed surface DOF is fixed")
+        # stiffness, factorisation and condensation per distinct Poisson's ratio
+        self.factor: dict[float, Factorization] = {}
+        self.stiffness: dict[float, object] = {}  # rows of K (E = 1) at the fixed DOFs
+        self.C1: dict[float, np.ndarray] = {}
+        t_asm = t_fac = t_cond = 0.0
+        for nu in sorted(set(nus)):
+            ta = time.perf_counter()
+            K = stiffness(space, nu)
+            Kff = K[self.free][:, self.free].tocsr()
+            self.stiffness[nu] = K[np.nonzero(fixed)[0]].tocsr()
+            tb = time.perf_counter()
+            F = Factorization(Kff, partial=pos)
+            tc = time.perf_counter()
+            self.C1[nu] = F.schur_inverse()
+            td = time.perf_counter()
+            self.factor[nu] = F
+            t_asm, t_fac, t_cond = t_asm + tb - ta, t_fac + tc - tb, t_cond + td - tc
+            if log:
+                log(f"nu={nu}: {Kff.shape[0]} free DOFs, assembly {tb - ta:.1f} s, "
+                    f"factorisation {tc - tb:.1f} s, "
+                    f"condensation ({pos.size} DOFs) {td - tc:.1f} s")
+        self.timings = {"mesh_s": t_mesh - t0, "assembly_s": t_asm, "factorisation_s": t_fac,
+                        "condensation_s": t_cond}
+        self.uses = 0
+
+    def release(self) -> None:
+        for F in self.factor.values():
+            F.free()
+        self.factor.clear()
+
+
+_CORE: list = []  # [(key, core)]: the last core, kept for the next case of a sweep
+
+
+def _core(spec: MeshSpec, a_ref: float, comps: tuple[int, ...], nus: tuple[float, ...],
+          log=None) -> _Core:
+    """The core for these parameters, reused from the previous call when they match.
+
+    A sweep (μ, β, Q values) runs the same mesh, materials and contact DOFs again and
+    again: the mesh, factorisation and condensation are then done once.  Only the last
+    core is kept; ``CONTACT_VV_FEM_CACHE=0`` disables the reuse.
+    """
+    key = (spec.key(), float(a_ref), tuple(comps), tuple(sorted(set(nus))))
+    if _cache_enabled() and _CORE and _CORE[0][0] == key and _CORE[0][1].factor:
+        core = _CORE[0][1]
+    else:
+        while _CORE:
+            _CORE.pop()[1].release()
+        core = _Core(spec, a_ref, comps, nus, log)
+        if _cache_enabled():
+            _CORE.append((key, core))
+    core.uses += 1
+    return core
+
+
 class FemModel:
     """Mesh, factorised stiffness and condensed two-body surface stiffness of a case."""
 
@@ -141,9 +232,11 @@ class FemModel:
         self.case = case
         fem = case.fem
         if fem.order != 2:
-            raise FemError(f"fem.order = {fem.order}: fem_reference implements P2 (order 2) only")
+            raise FemUnsupported(
+                f"fem.order = {fem.order}: fem_reference implements P2 (order 2) only"
+            )
         if case.kind == "fretting":
-            raise FemError("kind 'fretting' is not implemented by fem_reference yet")
+            raise FemUnsupported("kind 'fretting' is not implemented by fem_reference yet")
         self.a_ref = reference_length(case)
         self.h = fem.h * self.a_ref  # element size in the contact zone [mm]
         self.a_max = expected_radius(case, self.a_ref)  # units of a_ref
@@ -174,23 +267,7 @@ class FemModel:
             )
         self.spec = MeshSpec(self.shape, fem.block, fem.depth, fem.h, r_c, z_ref,
                              grading=0.25, h_max=fem.block / 4.0, r_fine=r_fine)
-        self.mesh = block_mesh(self.spec, self.a_ref)
-        t_mesh = time.perf_counter()
-        self.space = space = P2Space(self.mesh)
-        nodes = space.nodes
-        tol = 1e-9 * self.a_ref
-        fixed = np.zeros(space.ndofs, dtype=bool)
-        bottom = np.nonzero(np.abs(nodes[2] + H_mm) < tol)[0]
-        fixed[(3 * bottom[:, None] + np.arange(3)).ravel()] = True
-        if self.shape == "quarter":
-            fixed[3 * np.nonzero(np.abs(nodes[0]) < tol)[0]] = True
-        if self.shape in ("quarter", "half"):
-            fixed[3 * np.nonzero(np.abs(nodes[1]) < tol)[0] + 1] = True
-        self.fixed = fixed
-        self.free = np.nonzero(~fixed)[0]
         self.law_mode = self._law_mode()
-        self.surface = ContactSurface(space, r_c * self.a_ref, (0, 1, 2), fixed)
-        self.top = ContactSurface(space, np.inf, (2,), fixed)
         # The contact iteration needs the tangential DOFs only when the tangential
         # tractions depend on them: friction with history, or any friction with the
         # normal–tangential coupling of dissimilar materials.  Frictionless contact and
@@ -200,32 +277,13 @@ class FemModel:
             self.law_mode == "sliding" and case.identical_materials
         )
         comps = (2,) if normal_only else (0, 1, 2)
-        self.cidx = np.nonzero(np.isin(self.surface.dof_comp, comps))[0]
-        cdofs = self.surface.dofs[self.cidx]
-        pos = np.searchsorted(self.free, cdofs)
-        if not np.array_equal(self.free[pos], cdofs):
-            raise FemError("internal error: a condensed surface DOF is fixed")
-        # stiffness, factorisation and condensation per distinct Poisson's ratio
-        self.factor: dict[float, Factorization] = {}
-        self.stiffness: dict[float, object] = {}  # K (E = 1) for the reactions
-        C1: dict[float, np.ndarray] = {}
-        t_asm = t_fac = t_cond = 0.0
-        for nu in sorted({case.a.nu, case.b.nu}):
-            ta = time.perf_counter()
-            K = stiffness(space, nu)
-            Kff = K[self.free][:, self.free].tocsr()
-            self.stiffness[nu] = K[np.nonzero(fixed)[0]].tocsr()  # rows of the fixed DOFs
-            tb = time.perf_counter()
-            F = Factorization(Kff, partial=pos)
-            tc = time.perf_counter()
-            C1[nu] = F.schur_inverse()
-            td = time.perf_counter()
-            self.factor[nu] = F
-            t_asm, t_fac, t_cond = t_asm + tb - ta, t_fac + tc - tb, t_cond + td - tc
-            if log:
-                log(f"nu={nu}: {Kff.shape[0]} free DOFs, assembly {tb - ta:.1f} s, "
-                    f"factorisation {tc - tb:.1f} s, "
-                    f"condensation ({pos.size} DOFs) {td - tc:.1f} s")
+        core = _core(self.spec, self.a_ref, comps, (case.a.nu, case.b.nu), log)
+        self.core = core
+        self.mesh, self.space = core.mesh, core.space
+        self.fixed, self.free = core.fixed, core.free
+        self.surface, self.top, self.cidx = core.surface, core.top, core.cidx
+        self.factor, self.stiffness = core.factor, core.stiffness
+        C1 = core.C1
         Rz = np.where(self.surface.dof_comp[self.cidx] == 2, -1.0, 1.0)
         Crel = (Rz[:, None] * C1[case.a.nu] * Rz[None, :]) / case.a.E + C1[case.b.nu] / case.b.E
         self.Crel = Crel
@@ -233,10 +291,8 @@ class FemModel:
         self.Krel = la.cho_solve(cho, np.eye(Crel.shape[0]))
         self.Krel = 0.5 * (self.Krel + self.Krel.T)
         self.law = self._law()
-        self.timings = {
-            "mesh_s": t_mesh - t0, "assembly_s": t_asm, "factorisation_s": t_fac,
-            "condensation_s": t_cond, "setup_s": time.perf_counter() - t0,
-        }
+        self.timings = {**core.timings, "reused": core.uses > 1,
+                        "setup_s": time.perf_counter() - t0}
 
     # ------------------------------------------------------------------ contact law
 
@@ -300,6 +356,6 @@ class FemModel:
         return self.sym.factor * float(r[z].sum())
 
     def free_memory(self) -> None:
-        for F in self.factor.values():
-            F.free()
-        self.factor.clear()
+        """Release the factorisations unless the core is kept for the next case."""
+        if not _cache_enabled():
+            self.core.release()

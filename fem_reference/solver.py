@@ -50,11 +50,11 @@ from dataclasses import asdict
 import numpy as np
 import scipy.sparse.linalg as spla
 
-from cases.model import Case
+from cases.model import Case, CaseError
 from cases.result import OPEN, SLIP, STICK, Plane, RunResult, StepResult, von_mises
 
 from .contact import Control, Points, evaluate, newton
-from .model import FemError, FemModel, slide_direction, wear_compliances
+from .model import FemError, FemModel, FemUnsupported, slide_direction, wear_compliances
 from .stresses import COMPONENTS, PointLocator, sample_stresses
 from .vtu import fields_mesh
 
@@ -257,7 +257,7 @@ class _Run:
             iters += sol.iterations
             slip = np.zeros((self.probes.n, 2))
             if m.law_mode == "sliding":
-                slip[pev.pn > 0] = slide_direction(case)
+                slip[:] = slide_direction(case)
             return [self._output(0, sol, pev, slip, iters)]
         n_normal = 1 if case.identical_materials else N_NORMAL_DISSIMILAR
         bar = _bar(progress, n_normal + (N_TANGENTIAL if mode in ("load", "shift") else 0),
@@ -275,7 +275,7 @@ class _Run:
                 iters += sol.iterations
                 bar.update()
         bar.close()
-        slip = np.where((pev.pn > 0)[:, None], pev.gt - gt_ref, 0.0)
+        slip = pev.gt - gt_ref
         return [self._output(0, sol, pev, slip, iters)]
 
     def run_sliding_wear(self, progress) -> list[StepResult]:
@@ -283,9 +283,9 @@ class _Run:
         sw = case.sliding_wear
         n = int(round(sw.distance / sw.step))
         if n < 1 or abs(n * sw.step - sw.distance) > 1e-9 * sw.distance:
-            raise FemError(
+            raise CaseError(
                 f"sliding_wear.distance = {sw.distance} is not a whole number of steps "
-                f"of {sw.step}"
+                f"of sliding_wear.step = {sw.step}"
             )
         d = slide_direction(case)
         dg = sw.step * d
@@ -309,7 +309,7 @@ class _Run:
             if k in wanted:
                 slip = np.zeros((self.probes.n, 2))
                 if k > 0:
-                    slip[pev.pn > 0] = dg
+                    slip[:] = dg
                 steps.append(self._output(k, sol, pev, slip, sol.iterations, s=s))
         bar.close()
         return steps
@@ -354,6 +354,7 @@ class _Run:
         closed = (rho <= edge) & pr.inside[:ng]
         pstate[:ng] = np.where(closed, np.where(pev.state[:ng] == STICK, STICK, SLIP), OPEN)
         contact = pstate != OPEN
+        slip = np.where(contact[:, None], slip, 0.0)  # the slip of contact points only
         if m.shape == "full":
             area = 0.5 * float(np.sum(r_edge**2)) * (self.theta[1] - self.theta[0])
         else:
@@ -501,7 +502,7 @@ def solve(case: Case, progress: bool = False, *, vtu: bool = True, log=None) -> 
         elif case.kind == "sliding_wear":
             steps = run.run_sliding_wear(progress)
         else:
-            raise FemError(f"kind {case.kind!r} is not supported by fem_reference")
+            raise FemUnsupported(f"kind {case.kind!r} is not supported by fem_reference")
     finally:
         model.free_memory()
     meta = {

@@ -18,7 +18,7 @@ import numpy as np
 import pytest
 
 from cases.loader import load_case
-from cases.model import FemSettings
+from cases.model import FemSettings, Friction
 from cases.result import SLIP, STICK
 from fem_reference import solve
 
@@ -122,9 +122,9 @@ def test_cattaneo_mindlin_fine():
 @pytest.mark.full
 def test_orthotropic_sliding_full_block():
     """β = 45°: p_t is not parallel to the slip (Eq. 38), the full block is needed."""
-    case = load_case("sliding_friction", quick=True,
-                     overrides={"friction": {"mu1": 0.25, "mu2": 0.5, "beta": 45.0}})[0]
-    case = case.with_changes(fem=FemSettings(block=10.0, depth=10.0, h=0.25))
+    case = load_case("sliding_friction", quick=True)[0]
+    case = case.with_changes(fem=FemSettings(block=10.0, depth=10.0, h=0.25),
+                             friction=Friction(mu1=0.25, mu2=0.5, beta=45.0))
     res = solve(case, vtu=False)
     sc = res.steps[0].scalars
     assert res.meta["model"] == "full"
@@ -133,3 +133,17 @@ def test_orthotropic_sliding_full_block():
     d_star = math.hypot(0.25 * math.cos(th), 0.5 * math.sin(th))
     assert -sc["Qx"] == pytest.approx(P * d_star, rel=1e-9)
     assert abs(sc["Qy"]) > 0.05 * P
+
+
+def test_sweep_reuses_the_model_core(monkeypatch):
+    """A sweep point reuses the previous point's mesh, factorisation and condensation,
+    with the same numbers as a fresh model."""
+    sliding(0.15)
+    case, reused = sliding(0.5)
+    assert reused.meta["timings"]["reused"]
+    monkeypatch.setenv("CONTACT_VV_FEM_CACHE", "0")
+    fresh = solve(case, vtu=False)
+    assert not fresh.meta["timings"]["reused"]
+    a, b = reused.steps[0].scalars, fresh.steps[0].scalars
+    for key in ("P", "Qx", "p_max", "vm_max", "a_x", "approach", "contact_area"):
+        assert b[key] == pytest.approx(a[key], rel=1e-9, abs=1e-15)

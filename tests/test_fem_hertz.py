@@ -210,6 +210,25 @@ def test_mesh_refinement_errors_decrease():
         assert out[k][2] < out[k - 1][2]
 
 
+def test_dissimilar_frictionless_is_hertz_with_the_pair_modulus():
+    """Steel on aluminium without friction: Hertz with 1/E* = Σ (1 − ν²)/E; the stresses
+    of the aluminium plane follow its own ν = 0.33.  Exercises the two-body compliance
+    (R C(ν_a) R / E_a + C(ν_b) / E_b: two factorisations)."""
+    case = load_case("hertz", quick=True,
+                     overrides={"materials.b.E": 70000.0, "materials.b.nu": 0.33})[0]
+    case = case.with_changes(fem=FemSettings(block=10.0, depth=10.0, h=0.25))
+    res = solve(case, vtu=False)
+    a0, p0, _ = hertz(case)
+    sc = res.steps[0].scalars
+    assert res.meta["model"] == "quarter"
+    assert abs(sc["p_max"] / p0 - 1) < 0.02
+    assert abs(sc["a_x"] - a0) < 0.25 * a0
+    assert abs(sc["P_reaction"] / case.load.P - 1) < 0.005
+    vm_ref, z_ref = axis_vm_peak(0.33)
+    assert abs(sc["vm_axis_max"] / p0 / vm_ref - 1) < 0.03
+    assert abs(sc["vm_axis_z"] / a0 - z_ref) < 0.05
+
+
 def test_nonconvergence_raises_with_residual():
     case = load_case("hertz", quick=True)[0]
     case = case.with_changes(fem=FemSettings(block=10, depth=10, h=0.5),
