@@ -221,14 +221,19 @@ class ContactSolver:
         if check_edge:
             self._check_edge(p_n)
         res_t = (tangential_residual(tsol.p_x, tsol.p_y, slip_x, slip_y, p_n, self.friction,
-                                     self.c_t) if frictional else 0.0)
+                                     self.c_t) if frictional and np.any(p_n > 0) else 0.0)
+        res_n = normal_residual(p_n, gap, self.c_n)
+        if max(res_n, res_t) > 100 * self.tol:  # the assembled step, checked once more
+            raise ContactNotConverged(
+                f"contact step inconsistent after convergence: residuals normal {res_n:.3e}, "
+                f"tangential {res_t:.3e} (tol {self.tol:.1e})")
         state = ContactState(p_n, tsol.p_x, tsol.p_y, g_x, g_y, float(shift[0]),
                              float(shift[1]), float(nsol.approach))
         return StepSolution(
             state=state, gap=gap, slip_x=slip_x, slip_y=slip_y, status=status,
             P=float(p_n.sum() * self.dA), Qx=float(tsol.p_x.sum() * self.dA),
             Qy=float(tsol.p_y.sum() * self.dA), iterations=iters,
-            residual_n=normal_residual(p_n, gap, self.c_n), residual_t=res_t)
+            residual_n=res_n, residual_t=res_t)
 
     def _check_edge(self, p_n: np.ndarray) -> None:
         contact = p_n > 0

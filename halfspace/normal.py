@@ -76,9 +76,10 @@ def polonsky_keer(
     else:
         p = np.where(hh < hh.min() + 0.5 * np.ptp(hh) + 1e-300, 1.0, 0.0)
         if not load:
-            p = np.where(hh < 0, -hh, 0.0) * c  # rigid-punch guess
-            if not np.any(p > 0):
+            # touching without load: no penetration beyond round-off of the gap's scale
+            if hh.min() >= -1e-12 * max(abs(approach), float(np.ptp(h)), 1e-300):
                 return NormalSolution(np.zeros_like(hh), approach, hh.copy(), 0, 0.0)
+            p = np.where(hh < 0, -hh, 0.0) * c  # rigid-punch guess
     if load:
         p *= P / (p.sum() * dA)
     t = np.zeros_like(p)

@@ -149,3 +149,14 @@ def test_refinement_order_of_pressure():
     print(f"p_max errors {errs}, observed orders {orders}")
     assert errs[0] > errs[1] > errs[2]
     assert orders.min() > 1.0
+
+
+def test_worn_through_contact_under_displacement_control_carries_no_load():
+    """Wear down to the held approach leaves the bodies touching without load: the step
+    returns zero pressure with zero residual (found in the 1e5-cycle fretting run, where
+    round-off penetration used to leave a residual of 1 behind)."""
+    case, h, _, _ = hertz_setup(41)
+    approach = 0.002
+    worn = h + np.maximum(approach - h, 0.0)
+    sol = solver_for(case).solve(worn, approach=approach)
+    assert sol.P == 0.0 and sol.residual_n == 0.0
