@@ -10,8 +10,8 @@ slip norm s_k = ||dg_t||_{i,k} of the step known, the gap gains (s_a + s_b) p_n 
 normal problem is solved with the operator A_zz + diag(s_a + s_b) (exactly step IV's
 fixed point).  In gross sliding (pin-on-disk) the slip is the imposed rigid slip, so one
 solve is exact and the worn volume equals sum_k i_w P ds (Archard) to round-off.  In
-fretting the slip is unknown: the step is re-solved with the slip of the previous pass
-until the wear increment changes by less than ``WEAR_RTOL``.
+fretting the slip is unknown: it is taken from a predictor solve of the step (see
+:func:`_fretting_step`).
 
 Fretting uses a cycle jump factor J: each simulated cycle stands for J cycles, its wear
 multiplied by J (results must be shown converged in J).
@@ -38,9 +38,6 @@ from .solver import (
     step_result,
     stress_evaluator,
 )
-
-WEAR_RTOL = 1e-3  # fretting: relative change of the step's wear increment between passes
-WEAR_PASSES = 30
 
 OutputCallback = Callable[[StepResult], None]
 
@@ -170,10 +167,9 @@ def fretting(case: Case, progress: bool = False,
                   desc=f"{case.name} {case.param}", unit="cycle"):
         energy, min_stick, Q_prev, u_prev = 0.0, np.inf, state_Q(state, case), fr.amplitude
         for u in path:
-            sol = _fretting_step(case, solver, h0 + w_a + w_b, normal, u * d, state, J)
-            sn_a, sn_b = slip_norms(case, sol.slip_x, sol.slip_y)
-            w_a = w_a + J * sn_a * sol.state.p_n
-            w_b = w_b + J * sn_b * sol.state.p_n
+            sol, dw_a, dw_b = _fretting_step(case, solver, h0 + w_a + w_b, normal, u * d,
+                                             state, J)
+            w_a, w_b = w_a + dw_a, w_b + dw_b
             _check_wear(w_a, w_b)
             state = sol.state
             Q = np.array([sol.Qx, sol.Qy])
@@ -206,20 +202,16 @@ def state_Q(state: ContactState, case: Case) -> np.ndarray:
 
 
 def _fretting_step(case, solver, h, normal, shift, prev, J):
-    """One fretting step with its wear implicit (step IV): re-solve with the slip norm of
-    the previous pass until the wear increment settles."""
+    """One fretting step, wear semi-implicit: a predictor solve gives the slip; the
+    corrector solves the step with the wear J p_n ||dg_t||_i of that slip in the gap
+    (implicit in p_n, as step IV, explicit in the slip).  The wear added afterwards is
+    exactly the one the corrector's gap contains.  A fixed point in the slip as well does
+    not contract for large cycle jumps in partial slip (measured: no convergence in 30
+    passes at J = 1000, beta = 90); the error of the lagged slip is O(J) and is what the
+    cycle-jump convergence test measures."""
     sol = solver.solve(h, **normal, shift=shift, prev=prev)
     if case.a.i1 == case.a.i2 == case.b.i1 == case.b.i2 == 0:
-        return sol
-    dw_old = None
-    for _ in range(WEAR_PASSES):
-        sn_a, sn_b = slip_norms(case, sol.slip_x, sol.slip_y)
-        rate = J * (sn_a + sn_b)
-        sol = solver.solve(h, **normal, shift=shift, prev=prev, wear_rate=rate)
-        dw = rate * sol.state.p_n
-        if dw_old is not None and np.abs(dw - dw_old).max() <= WEAR_RTOL * max(
-                np.abs(dw).max(), 1e-300):
-            return sol
-        dw_old = dw
-    raise ContactNotConverged(
-        f"fretting step: the implicit wear increment did not settle in {WEAR_PASSES} passes")
+        return sol, np.zeros_like(h), np.zeros_like(h)
+    sn_a, sn_b = slip_norms(case, sol.slip_x, sol.slip_y)
+    sol = solver.solve(h, **normal, shift=shift, prev=prev, wear_rate=J * (sn_a + sn_b))
+    return sol, J * sn_a * sol.state.p_n, J * sn_b * sol.state.p_n
