@@ -11,6 +11,7 @@ from cases.result import RunResult, StepResult
 
 from .contact import SLIP, STICK, ContactSolver, ContactState, StepSolution
 from .materials import Materials
+from .operator import WORKERS
 from .stresses import StressEvaluator
 
 SOLVER_NAME = "ic"
@@ -120,4 +121,4 @@ def solve(case: Case, progress: bool = False) -> RunResult:
     result = step_result(case, sol, stress_evaluator(case), step=0, wear_a=zero,
                          wear_b=zero.copy(), wall_s=time.perf_counter() - t0)
     return RunResult(case=case.name, solver=SOLVER_NAME, param=case.param, steps=[result],
-                     meta={"method": case.solver.method})
+                     meta={"method": case.solver.method, "fft_workers": WORKERS})
