@@ -164,7 +164,18 @@ class UnitOutcome:
     detail: str = ""
 
 
+#: scalars a numerical solver must report as finite numbers when it reports them
+FINITE_SCALARS = ("P", "contact_area", "p_max", "w_max", "wear_volume", "vm_max")
+
+
 def _check_finite(result: RunResult, solver: str) -> None:
+    """NaN or Inf in a numerical solver's fields or key scalars fails the run (Inf in any
+    solver's scalars too); a closed form may leave what it does not cover as NaN."""
+    for k, step in enumerate(result.steps):
+        for key, value in step.scalars.items():
+            if isinstance(value, float) and (math.isinf(value) or (
+                    math.isnan(value) and key in FINITE_SCALARS and solver not in NAN_ALLOWED)):
+                raise RuntimeError(f"non-finite scalar {key} = {value} at output step {k}")
     if solver in NAN_ALLOWED:
         return
     for k, step in enumerate(result.steps):

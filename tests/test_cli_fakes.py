@@ -124,6 +124,23 @@ def solve_nan(case: Case, progress: bool = False) -> RunResult:
     return result
 
 
+def solve_partial(case: Case, progress: bool = False) -> RunResult:
+    """A closed form that covers the surface only: NaN σ_VM scalars and planes."""
+    result = solve_exact(case)
+    for step in result.steps:
+        for key in ("vm_max", "vm_max_x", "vm_max_y", "vm_max_z", "stick_area"):
+            step.scalars[key] = math.nan
+        for plane in step.planes.values():
+            plane.fields["vm"] = np.full_like(plane.fields["vm"], np.nan)
+    return result
+
+
+def solve_nan_scalar(case: Case, progress: bool = False) -> RunResult:
+    result = solve_ic(case)
+    result.steps[0].scalars["p_max"] = math.nan
+    return result
+
+
 def has_solution(case: Case) -> bool:
     return case.friction.mu1 < 0.5
 

@@ -238,6 +238,21 @@ def test_non_finite_fields_fail_the_run(tmp_path, monkeypatch, capsys):
     assert "non-finite values in surface p_n" in capsys.readouterr().err
 
 
+def test_nan_scalars_of_a_numerical_solver_fail_the_run(tmp_path, monkeypatch, capsys):
+    fakes.use(monkeypatch, ic="solve_nan_scalar")
+    assert run(str(write_case(tmp_path)), "--out", str(tmp_path / "r")) == 1
+    assert "non-finite scalar p_max = nan at output step 0" in capsys.readouterr().err
+
+
+def test_what_a_closed_form_does_not_cover_is_not_compared(tmp_path, monkeypatch):
+    fakes.use(monkeypatch, ic="solve_ic", analytic="solve_partial")
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path)), "--out", str(out)) == 0
+    m = pd.read_csv(out / "small" / "metrics.csv")
+    assert set(m["quantity"]) == {"p_n", "p_max", "a_x", "a_y", "contact_area"}
+    assert m["passed"].all()
+
+
 def test_not_converged_rows_fail_the_gate(tmp_path, fake, capsys):
     out = tmp_path / "res"
     assert run(str(write_case(tmp_path)), "--out", str(out)) == 0
