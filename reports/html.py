@@ -188,8 +188,8 @@ def case_section(case: CaseResults) -> str:
         labels = {}
         if not sub.empty:
             t, tl = plots.progress_axis(sub, a0)
-            labels = {int(k): f"{tl.split()[0]}={v:.3g}" for k, v in zip(sub["step"], t,
-                                                                         strict=True)}
+            short = plots.SHORT.get(tl, tl)
+            labels = {int(k): f"{short}={v:.3g}" for k, v in zip(sub["step"], t, strict=True)}
         parts.append('<div class="wear">' + _fig(
             plots.wear_profiles(history, a0, labels, f"Wear profiles: {name}{label}"),
             "wear profiles") + "</div>")

@@ -229,6 +229,10 @@ def progress_axis(summary: pd.DataFrame, a0: float) -> tuple[pd.Series, str]:
     return summary["step"], "output step"
 
 
+#: short legend names of the evolution variables of :func:`progress_axis`
+SHORT = {"sliding distance s / a0": "s/a0", "fretting cycles N": "N", "output step": "step"}
+
+
 def histories(summary: pd.DataFrame, a0: float, p0: float, title: str = "") -> Figure | None:
     """w_max vs distance (when there is wear) and σ_VM,max / p0 and its depth vs step."""
     if summary.empty or summary["step"].nunique() < 2:
