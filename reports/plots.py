@@ -261,32 +261,49 @@ def histories(summary: pd.DataFrame, a0: float, p0: float, title: str = "") -> F
     return fig
 
 
+def _loop_columns(table: pd.DataFrame) -> tuple[str, str, str | None] | None:
+    """(displacement, force, cycle) columns of a fretting-loop table, or None."""
+    cols = list(table.columns)
+    disp = next((c for c in cols if c.lower().startswith(("disp", "shift", "delta", "u_",
+                                                          "g_t"))), None)
+    force = next((c for c in cols if c in ("Qx", "Q", "Fx", "Q_x")), None) or \
+        next((c for c in cols if c.lower().startswith(("q", "f")) and c != disp), None)
+    cycle = next((c for c in cols if c.lower() in ("cycle", "cycles", "n")), None)
+    if disp is None or force is None:
+        rest = [c for c in cols if c != cycle]
+        if len(rest) < 2:
+            return None
+        disp, force = rest[0], rest[1]
+    return disp, force, cycle
+
+
 def loops(tables: Mapping[str, Mapping[str, pd.DataFrame]], title: str = "") -> Figure | None:
-    """Fretting loops: every table whose name contains 'loop', first column vs second."""
-    items = [(solver, name, t) for solver, ts in tables.items() for name, t in ts.items()
-             if "loop" in name and t.shape[1] >= 2]
+    """Fretting loops: tangential force against displacement, one curve per recorded
+    cycle, from every table whose name contains 'loop'."""
+    items = []
+    for solver, ts in tables.items():
+        for name, t in ts.items():
+            cols = _loop_columns(t) if "loop" in name else None
+            if cols is not None:
+                items.append((solver, name, t, cols))
     if not items:
         return None
-    fig, ax = plt.subplots(layout="constrained", figsize=(5.5, 4))
-    for solver, name, t in items:
-        ax.plot(t.iloc[:, 0], t.iloc[:, 1], label=f"{solver} {name}", **style(solver))
-    first = items[0][2]
-    ax.set_xlabel(_unit_label(first.columns[0]))
-    ax.set_ylabel(_unit_label(first.columns[1]))
+    fig, ax = plt.subplots(layout="constrained", figsize=(6, 4.2))
+    for solver, _name, t, (disp, force, cycle) in items:
+        groups = t.groupby(cycle, sort=True) if cycle else [(None, t)]
+        groups = list(groups)
+        shades = np.linspace(0.35, 1.0, len(groups))
+        for shade, (n, g) in zip(shades, groups, strict=True):
+            st = dict(style(solver), ms=2, alpha=float(shade))
+            label = f"{solver}" + (f" N={n:g}" if n is not None else "")
+            ax.plot(1e3 * g[disp], g[force], label=label, **st)
+    disp, force, _ = items[0][3]
+    ax.set_xlabel(f"tangential displacement ({disp}) [µm]")
+    ax.set_ylabel(f"tangential force ({force}) [N]")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, ncol=2)
     ax.set_title(title or "Fretting loops")
     return fig
-
-
-def _unit_label(column: str) -> str:
-    if "[" in column:
-        return column
-    if column.lower().startswith(("q", "f", "p")):
-        return f"{column} [N]"
-    if column.lower().startswith(("shift", "delta", "d", "u", "g", "s")):
-        return f"{column} [mm]"
-    return column
 
 
 def param_value(label: str) -> float:

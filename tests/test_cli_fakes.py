@@ -65,8 +65,9 @@ def _result(case: Case, solver: str, scale: float) -> RunResult:
     steps = [hertz_step(case, scale, k) for k in range(n)]
     tables = {}
     if case.kind == "sliding_wear":
-        d = np.linspace(-1.0, 1.0, 9)
-        tables["fretting_loop"] = {"shift_x": d, "Qx": scale * np.tanh(3 * d)}
+        d = 1e-3 * np.tile(np.linspace(-4.0, 4.0, 9), 2)
+        tables["loops"] = {"cycle": np.repeat([1.0, 2.0], 9), "displacement": d,
+                           "Qx": scale * np.tanh(3e3 * d), "Qy": np.zeros_like(d)}
     return RunResult(case=case.name, solver=solver, param=case.param, steps=steps,
                      meta={"note": "fake"}, tables=tables)
 
