@@ -143,7 +143,8 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
                     sweep=sweep, dir_name=dir_name or name)
     for s in plan.solvers:
         if not any(s in plan.applicable(c) for c in points):
-            plan.skipped[s] = "no solution for this case"
+            plan.skipped[s] = ("no closed-form solution for this case" if s == "analytic"
+                               else "does not support this case")
     return plan
 
 

@@ -25,9 +25,15 @@ REGISTRY: dict[str, str] = {
 }
 
 #: solver name -> "module:function" deciding whether the solver applies to a case.
+#: ``has_solution`` is required of the analytic references (a case without one is not
+#: theirs); ``supports`` is optional for the numerical solvers (without it they claim
+#: every case, and a case they cannot handle fails loudly).
 APPLICABLE: dict[str, str] = {
+    "ic": "halfspace:supports",
+    "fem": "fem_reference:supports",
     "analytic": "cases.analytic.solver:has_solution",
 }
+REQUIRED_APPLICABILITY = frozenset({"analytic"})
 
 
 def _import(target: str) -> Callable:
@@ -71,8 +77,8 @@ def available(name: str) -> tuple[bool, str]:
 def applies(name: str, case: Case) -> bool:
     """Whether solver ``name`` has anything to say about ``case`` (e.g. an analytic solution).
 
-    A solver without an applicability test applies to every case; a solver whose test
-    cannot be imported does not apply.
+    A solver without an applicability test applies to every case, unless the test is
+    required of it (:data:`REQUIRED_APPLICABILITY`) and cannot be imported.
     """
     target = APPLICABLE.get(name)
     if target is None:
@@ -80,5 +86,5 @@ def applies(name: str, case: Case) -> bool:
     try:
         fn = _import(target)
     except SolverUnavailable:
-        return False
+        return name not in REQUIRED_APPLICABILITY
     return bool(fn(case))

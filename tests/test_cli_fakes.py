@@ -142,6 +142,10 @@ def solve_nan_scalar(case: Case, progress: bool = False) -> RunResult:
     return result
 
 
+def fem_supports(case: Case) -> bool:
+    return case.kind == "static"
+
+
 def has_solution(case: Case) -> bool:
     return case.friction.mu1 < 0.5
 

@@ -223,6 +223,34 @@ def test_three_solvers_three_pairs_and_vtu(tmp_path, monkeypatch):
     assert "fields/fem/base/step_0000.vtu" in manifest.read(out / "small")["files"]
 
 
+def test_a_solver_that_does_not_support_a_case_is_skipped(tmp_path, monkeypatch, capsys):
+    from reports import solvers
+
+    fakes.use(monkeypatch, ic="solve_ic", fem="solve_fem")
+    monkeypatch.setitem(solvers.APPLICABLE, "fem", "test_cli_fakes:fem_supports")
+    wear = HERTZ.replace('kind = "static"', 'kind = "sliding_wear"') + \
+        "[sliding_wear]\ndistance = 2.0\n"
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path, wear)), "--out", str(out)) == 0
+    assert set(pd.read_csv(out / "small" / "summary.csv")["solver"]) == {"ic"}
+    assert manifest.read(out / "small")["skipped"]["fem"] == "does not support this case"
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out)]) == 0
+    assert "note: small: solver fem not run (does not support this case)" in \
+        capsys.readouterr().out
+    # without a supports() function a numerical solver claims every case
+    monkeypatch.setitem(solvers.APPLICABLE, "fem", "test_cli_fakes:no_such_function")
+    assert solvers.applies("fem", load_case_quick(tmp_path, wear))
+    monkeypatch.setitem(solvers.APPLICABLE, "analytic", "test_cli_fakes:no_such_function")
+    assert not solvers.applies("analytic", load_case_quick(tmp_path, wear))
+
+
+def load_case_quick(tmp_path, text):
+    from cases.loader import load_case
+
+    return load_case(write_case(tmp_path, text, "probe"))[0]
+
+
 def test_unwritable_result_fails_cleanly(tmp_path, monkeypatch, capsys):
     fakes.use(monkeypatch, analytic="solve_bad_vtu")
     assert run(str(write_case(tmp_path)), "--out", str(tmp_path / "r")) == 1
