@@ -92,27 +92,31 @@ def sample(axes: Sequence[np.ndarray], values: np.ndarray,
 
 
 def field_errors(fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
-                 scale: float) -> dict[str, float] | None:
+                 scale: float, ref: np.ndarray | None = None) -> dict[str, float] | None:
     """Relative L2 and max errors of ``fa`` against ``fb`` on ``mask`` (None: skip).
 
-    Points where either field is NaN are ignored; with no such point left, or both
-    fields zero (below 1e-12 ``scale``), there is nothing to compare.  A reference
-    that is zero while the other field is not is normalised by ``scale``.
+    The norms of ``ref`` (default ``fb``) normalise the errors: a traction component is
+    measured against the whole tangential traction |p_t| of the reference, so that a
+    component that is nearly zero in both solvers does not produce a large relative
+    error.  Points where a field is NaN are ignored; with no point left, or both fields
+    zero (below 1e-12 ``scale``), there is nothing to compare.  A reference that is zero
+    while the other field is not is normalised by ``scale``.
     """
-    ok = np.isfinite(fa) & np.isfinite(fb)
+    ref = fb if ref is None else ref
+    ok = np.isfinite(fa) & np.isfinite(fb) & np.isfinite(ref)
     if mask is not None:
         ok &= mask
     if not ok.any():
         return None
-    a, b = fa[ok], fb[ok]
+    a, b, r = fa[ok], fb[ok], ref[ok]
     tiny = _TINY * scale
     if np.max(np.abs(a)) <= tiny and np.max(np.abs(b)) <= tiny:
         return None
     diff = a - b
-    l2_ref = max(float(np.linalg.norm(b)), tiny * math.sqrt(b.size), _TINY)
-    max_ref = max(float(np.max(np.abs(b))), tiny, _TINY)
-    if np.max(np.abs(b)) <= tiny:  # reference identically zero: normalise by the scale
-        l2_ref, max_ref = scale * math.sqrt(b.size), scale
+    if np.max(np.abs(r)) <= tiny:  # reference identically zero: normalise by the scale
+        l2_ref, max_ref = scale * math.sqrt(r.size), scale
+    else:
+        l2_ref, max_ref = float(np.linalg.norm(r)), float(np.max(np.abs(r)))
     return {"l2": float(np.linalg.norm(diff)) / l2_ref,
             "max": float(np.max(np.abs(diff))) / max_ref}
 
@@ -164,13 +168,18 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float
             pa = sample((sa.x, sa.y), sa.surface["p_n"], (xs, ys))
             pb = sample((sb.x, sb.y), sb.surface["p_n"], (xs, ys))
             contact = (pa > 0) & (pb > 0)
-            for q in tol.SURFACE_FIELDS:
-                if q not in sa.surface or q not in sb.surface:
-                    continue
+            fields = {"p_n": (pa, pb)}
+            for q in tol.SURFACE_FIELDS[1:]:
+                if q in sa.surface and q in sb.surface:
+                    fields[q] = (sample((sa.x, sa.y), sa.surface[q], (xs, ys)),
+                                 sample((sb.x, sb.y), sb.surface[q], (xs, ys)))
+            pt_ref = None
+            if "p_x" in fields and "p_y" in fields:
+                pt_ref = np.hypot(fields["p_x"][1], fields["p_y"][1])
+            for q, (fa, fb) in fields.items():
                 scale = p0 if q.startswith("p_") else a0
-                fa = pa if q == "p_n" else sample((sa.x, sa.y), sa.surface[q], (xs, ys))
-                fb = pb if q == "p_n" else sample((sb.x, sb.y), sb.surface[q], (xs, ys))
-                err = field_errors(fa, fb, contact, scale)
+                ref = pt_ref if q in ("p_x", "p_y") else None
+                err = field_errors(fa, fb, contact, scale, ref)
                 if err is not None:
                     rows += [(q, m, err[m]) for m in tol.METRICS[q]]
 

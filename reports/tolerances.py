@@ -18,7 +18,9 @@ vm_max_loc        cells, a0           distance between the σ_VM maxima
 ================  ==================  ===================================================
 
 Metrics, with A the first and B the second (reference) solver of the pair:
-``l2`` = ‖A − B‖₂ / ‖B‖₂ and ``max`` = max|A − B| / max|B| on common sample points;
+``l2`` = ‖A − B‖₂ / ‖B‖₂ and ``max`` = max|A − B| / max|B| on common sample points (for
+``p_x`` and ``p_y`` the denominators are the norms of B's whole tangential traction
+|p_t| = √(p_x² + p_y²), so a component that is nearly zero in both is not inflated);
 ``rel`` = |A − B| / |B|; ``cells`` = a length difference in units of the coarser of the
 two solvers' cell sizes; ``a0`` = a length difference in units of the Hertz radius.
 

@@ -55,6 +55,16 @@ def test_field_errors_definitions():
     assert err == {"l2": pytest.approx(0.5), "max": pytest.approx(0.5)}
 
 
+def test_traction_components_are_measured_against_the_whole_traction():
+    px_b = np.array([1.0, 2.0, 2.0])
+    py_b = np.array([0.001, -0.001, 0.0])
+    py_a = py_b + np.array([0.002, 0.0, 0.0])
+    err = field_errors(py_a, py_b, None, 1.0, ref=np.hypot(px_b, py_b))
+    # |Δp_y| = 0.002 against ‖p_t‖ ≈ 3, not against ‖p_y‖ ≈ 0.0014
+    assert err["l2"] == pytest.approx(0.002 / np.linalg.norm(np.hypot(px_b, py_b)), rel=1e-12)
+    assert err["max"] == pytest.approx(0.002 / np.hypot(2.0, 0.001), rel=1e-12)
+
+
 def test_pair_metrics_on_different_grids():
     """ic on a 27-cell grid vs the exact solution on 81 cells: metrics on the coarse
     points, where the fine field is interpolated."""
