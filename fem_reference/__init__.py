@@ -14,13 +14,23 @@ Public API:
   :class:`ContactConvergenceError` (contact iteration failed; message has the residual).
 """
 
+from cases.model import Case
+
 from .contact import ContactConvergenceError
 from .mesh import MeshError
 from .model import FemError, FemUnsupported
 from .solver import solve
 from .vtu import read_vtu, write_vtu
 
+
+def supports(case: Case) -> bool:
+    """Whether the FE model implements the case: P2 elements, static and sliding-wear
+    cases (fretting is not implemented; the runner skips it with a note)."""
+    return case.kind in ("static", "sliding_wear") and case.fem.order == 2
+
+
 __all__ = [
+    "supports",
     "solve", "write_vtu", "read_vtu", "FemError", "FemUnsupported", "MeshError",
     "ContactConvergenceError",
 ]

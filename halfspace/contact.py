@@ -124,10 +124,12 @@ class ContactSolver:
                 raise ContactNotConverged(
                     f"tangential load |Q| = {qn:.6g} N reaches the friction capacity "
                     f"{capacity:.6g} N: gross sliding, use load.sliding instead")
-        # Mindlin stick stiffness 8 G* a, 1/G* = 2 (2 - nu) / G (Eq. 6 averages)
+        # Mindlin stick stiffness 8 G* a, 1/G* = 2 (2 - nu) / G (Eq. 6 averages); the
+        # resultant on body a opposes the shift of a: dQ/dg_t,o = -k_t in full stick
         a_eff = np.sqrt(np.count_nonzero(p_n > 0) * self.dA / np.pi)
         k_t = 4.0 * a_eff * self.mat.G / (2.0 - self.mat.nu)
-        J = np.eye(2) * k_t
+        J = -np.eye(2) * k_t
+        max_step = 2.0 * P * max(fr.mu1, fr.mu2) / k_t  # twice the gross-slip shift
         zeta = np.asarray(shift0, float)
         sol = self._tangential(zeta, u_tn, g_prev, p_n, p0)
         iters = sol.iterations
@@ -137,6 +139,8 @@ class ContactSolver:
             if np.hypot(*F) <= self.tol * scale * 10:
                 return sol, zeta, iters
             dz = -np.linalg.solve(J, F)
+            if np.hypot(*dz) > max_step:  # the secant flattens near gross slip
+                dz *= max_step / np.hypot(*dz)
             zeta = zeta + dz
             sol = self._tangential(zeta, u_tn, g_prev, p_n, (sol.p_x, sol.p_y))
             iters += sol.iterations

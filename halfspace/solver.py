@@ -91,21 +91,46 @@ def step_result(case: Case, sol: StepSolution, stresses: StressEvaluator, *, ste
                       planes=planes)
 
 
+NORMAL_INCREMENTS_COUPLED = 5  # normal loading steps when K != 0 and friction (history)
+TANGENTIAL_INCREMENTS = 5  # tangential loading steps after the normal load
+
+
 def static_step(case: Case, solver: ContactSolver, h: np.ndarray,
                 prev: ContactState | None = None) -> StepSolution:
-    """Solve one static step with the case's normal and tangential control."""
+    """Solve a static case along its load path: the normal load (or approach) first,
+    the tangential load (or shift) after it (cases.md, case 2).  With friction the result
+    depends on the path when the materials couple normal and tangential (K != 0) or the
+    tangential load is not monotonic in direction, so the normal load is applied in
+    ``NORMAL_INCREMENTS_COUPLED`` steps when coupled and a tangential load or shift in
+    ``TANGENTIAL_INCREMENTS`` steps, each with the slip history of the previous one (the
+    same path as the FEM reference).  Gross sliding is one step after the normal load."""
     ld = case.load
-    kw: dict = {"P": ld.P} if ld.load_controlled else {"approach": ld.approach}
     mode = ld.tangential_mode
-    if mode == "load":
-        kw["Q"] = (ld.Qx or 0.0, ld.Qy or 0.0)
+    frictional = case.friction.mu1 > 0
+    normal = ({"P": ld.P} if ld.load_controlled else {"approach": ld.approach})
+    n_normal = NORMAL_INCREMENTS_COUPLED if frictional and solver.op.coupled else 1
+    base = np.zeros(2) if prev is None else np.array([prev.shift_x, prev.shift_y])
+    sol = None
+    for i in range(1, n_normal + 1):
+        frac = {k: v * i / n_normal for k, v in normal.items()}
+        sol = solver.solve(h, prev=prev, shift=base, **frac)
+        prev = sol.state
+    if mode == "load" and frictional:
+        Q = np.array([ld.Qx or 0.0, ld.Qy or 0.0])
+        for i in range(1, TANGENTIAL_INCREMENTS + 1):
+            sol = solver.solve(h, prev=prev, Q=Q * i / TANGENTIAL_INCREMENTS, **normal)
+            prev = sol.state
     elif mode == "shift":
-        kw["shift"] = (ld.shift_x or 0.0, ld.shift_y or 0.0)
+        target = np.array([ld.shift_x or 0.0, ld.shift_y or 0.0])
+        for i in range(1, TANGENTIAL_INCREMENTS + 1):
+            shift = base + (target - base) * i / TANGENTIAL_INCREMENTS
+            sol = solver.solve(h, prev=prev, shift=shift, **normal)
+            prev = sol.state
     elif mode == "sliding":
-        base = np.zeros(2) if prev is None else np.array([prev.shift_x, prev.shift_y])
-        kw["shift"] = base + SLIDE_FACTOR * max(case.grid.Lx, case.grid.Ly) * slide_direction(
+        shift = base + SLIDE_FACTOR * max(case.grid.Lx, case.grid.Ly) * slide_direction(
             ld.slide_angle)
-    return solver.solve(h, prev=prev, **kw)
+        sol = solver.solve(h, prev=prev, shift=shift, **normal)
+    return sol
 
 
 def solve(case: Case, progress: bool = False) -> RunResult:

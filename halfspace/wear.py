@@ -101,7 +101,8 @@ def sliding_wear(case: Case, progress: bool = False,
                   unit="step"):
         h = h0 + w_a + w_b
         if k == 0:
-            sol = solver.solve(h, P=case.load.P)  # the unworn pin, before sliding
+            # s = 0: the unworn pin already sliding (friction tractions on), no wear yet
+            sol = solver.solve(h, P=case.load.P, shift=ds)
         else:
             shift = np.array([state.shift_x, state.shift_y]) + ds
             sol = solver.solve(h, P=case.load.P, shift=shift, prev=state,

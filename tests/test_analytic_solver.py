@@ -9,7 +9,7 @@ from cases import load_case
 from cases.analytic import hertz as hz
 from cases.analytic import mindlin as md
 from cases.analytic import sliding as sl
-from cases.analytic.solver import has_solution, sliding_traction_vector, solve
+from cases.analytic.solver import ASYMPTOTIC_FROM, has_solution, sliding_traction_vector, solve
 from cases.model import Body, CaseError, Friction, Load, SlidingWear
 from cases.result import OPEN, SLIP, STICK, SUMMARY_COLUMNS
 
@@ -177,12 +177,18 @@ def test_sliding_wear_scalars():
     steps = {st.scalars["step"]: st.scalars for st in res.steps}
     assert sorted(steps) == [0, 1, 20, 40, 80, 160, 640]
     P, R, i_w = case.load.P, case.R, 1.33e-7
+    s_valid = ASYMPTOTIC_FROM * steps[0]["s_transition"]
     for n, s in steps.items():
         assert s["s"] == n * 1.0
-        # Archard: the worn volume is exact; the depth is its paraboloid cap
+        # Archard: the worn volume is exact at every s
         assert s["wear_volume"] == pytest.approx(i_w * P * n, rel=1e-14, abs=0)
+        if 0 < n < s_valid:  # Argatov's asymptotic quantities: no reference yet
+            assert math.isnan(s["w_max"]) and math.isnan(s["p_max"]) and math.isnan(s["a_x"])
+            continue
+        # the depth is the paraboloid cap of the worn volume
         assert s["w_max"] == pytest.approx(math.sqrt(i_w * P * n / (math.pi * R)), rel=1e-12)
         assert s["contact_area"] == pytest.approx(math.pi * s["a_x"] ** 2, rel=1e-14)
+    assert s_valid == pytest.approx(230.0, rel=0.05)  # 10 s_c, s_c about 23 mm here
     assert steps[0]["p_max"] == pytest.approx(hz.hertz(P, R, case.E_star).p0, rel=1e-14)
     a = steps[640]["a_x"]
     assert steps[640]["p_max"] == pytest.approx(P / (math.pi * a * a), rel=1e-14)
