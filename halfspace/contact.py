@@ -17,7 +17,7 @@ import numpy as np
 
 from cases.model import Friction, Grid
 
-from .friction import mu_dual_norm, mu_norm
+from .friction import mu_norm
 from .materials import Materials
 from .normal import (
     ContactNotConverged,
@@ -119,7 +119,8 @@ class ContactSolver:
         P = p_n.sum() * self.dA
         qn = np.hypot(*Q)
         if qn > 0:
-            capacity = P * float(mu_dual_norm(Q[0] / qn, Q[1] / qn, fr))
+            # resultants the friction can carry: P times the friction ellipse, ||Q||_mu <= P
+            capacity = P / float(mu_norm(Q[0] / qn, Q[1] / qn, fr))
             if qn >= capacity * (1 - 1e-9):
                 raise ContactNotConverged(
                     f"tangential load |Q| = {qn:.6g} N reaches the friction capacity "
@@ -145,8 +146,21 @@ class ContactSolver:
             sol = self._tangential(zeta, u_tn, g_prev, p_n, (sol.p_x, sol.p_y))
             iters += sol.iterations
             F_new = np.array([sol.p_x.sum(), sol.p_y.sum()]) * self.dA - Q
-            dF = F_new - F
-            J = J + np.outer(dF - J @ dz, dz) / float(dz @ dz)  # Broyden update
+            if np.hypot(*F_new) >= np.hypot(*F):
+                # no progress: refresh J by finite differences at the new point (the
+                # Broyden secant can be nearly singular under strong orthotropy)
+                h_fd = 1e-3 * max_step
+                for col in range(2):
+                    e = np.zeros(2)
+                    e[col] = h_fd
+                    probe = self._tangential(zeta + e, u_tn, g_prev, p_n,
+                                             (sol.p_x, sol.p_y))
+                    iters += probe.iterations
+                    Fp = np.array([probe.p_x.sum(), probe.p_y.sum()]) * self.dA - Q
+                    J[:, col] = (Fp - F_new) / h_fd
+            else:
+                dF = F_new - F
+                J = J + np.outer(dF - J @ dz, dz) / float(dz @ dz)  # Broyden update
             F = F_new
         raise ContactNotConverged(
             f"tangential load control did not converge: |Q - Q_target| = {np.hypot(*F):.3e} N")

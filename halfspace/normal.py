@@ -70,6 +70,8 @@ def polonsky_keer(
     load = P is not None
     if load == (approach is not None):
         raise ValueError("give exactly one of P and approach")
+    if not np.all(np.isfinite(h)):
+        raise ContactNotConverged("the separation profile (geometry + wear) contains NaN/Inf")
     hh = h if load else h - approach
     if p0 is not None and np.any(p0 > 0):
         p = np.array(p0, dtype=float)

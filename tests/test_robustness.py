@@ -1,0 +1,108 @@
+"""Issue 6 items 3, 5, 6: bad input refused clearly, loud numerical failures, and the
+half-space solver converging (or failing clearly) at the edges of its parameter range."""
+
+import numpy as np
+import pytest
+
+from cases import CaseError, load_case
+from cases.model import Friction
+from halfspace.contact import SLIP, ContactSolver
+from halfspace.friction import mu_norm
+from halfspace.materials import Materials
+from halfspace.normal import ContactNotConverged
+from halfspace.wear import _check_wear
+
+
+@pytest.mark.parametrize(("over", "needle"), [
+    ({"grid.nx": 20000, "grid.ny": 20000}, "GB"),  # refused before allocating
+    ({"load.P": 0.0}, "load.P = 0.0"),
+    ({"friction.mu": -0.1}, "friction.mu1 = -0.1"),
+    ({"friction.beta": 400.0}, "friction.beta = 400.0"),
+    ({"materials.b.nu": 0.5}, "materials.b.nu = 0.5"),
+    ({"materials.a.E": -1.0}, "materials.a.E = -1.0"),
+    ({"grid.nx": 3}, "grid.nx = 3"),
+])
+def test_bad_values_are_refused_naming_the_key(over, needle):
+    with pytest.raises(CaseError, match=needle.replace(".", r"\.")):
+        load_case("hertz", overrides=over)
+
+
+FRICTIONLESS = Friction()
+
+
+def setup(n=31, L=0.8, friction=FRICTIONLESS, nu=0.3):
+    case = load_case("hertz", overrides={"grid.nx": n, "grid.ny": n, "grid.Lx": L,
+                                         "grid.Ly": L, "materials.a.nu": nu,
+                                         "materials.b.nu": nu})[0]
+    X, Y = np.meshgrid(case.grid.x, case.grid.y, indexing="ij")
+    solver = ContactSolver(case.grid, Materials.from_bodies(case.a, case.b), friction,
+                           tol=1e-10)
+    return case, solver, (X**2 + Y**2) / (2 * case.R)
+
+
+def test_nan_in_the_gap_stops_the_step():
+    case, solver, h = setup()
+    h[3, 4] = np.nan
+    with pytest.raises(ContactNotConverged, match="NaN"):
+        solver.solve(h, P=case.load.P)
+
+
+def test_negative_wear_stops_the_run():
+    w = np.zeros((4, 4))
+    w[1, 1] = -1e-9
+    with pytest.raises(ContactNotConverged, match="negative wear"):
+        _check_wear(w, np.zeros((4, 4)))
+
+
+@pytest.mark.parametrize("friction", [
+    Friction(2.0, 2.0, 0.0),  # mu = 2
+    Friction(0.02, 1.0, 30.0),  # extreme orthotropy mu2/mu1 = 50, axes rotated
+])
+@pytest.mark.parametrize("nu", [0.0, 0.49])
+def test_partial_slip_converges_at_the_range_edges(friction, nu):
+    """Load-controlled Q = 0.5 x capacity along x: converges with Q carried to 1e-8 and
+    tractions inside the ellipse, for mu up to 2, mu2/mu1 = 50 and nu in {0, 0.49}.  The
+    resultants friction can carry are P times the friction ellipse, so the capacity
+    along x (with Qy = 0) is P / ||e_x||_mu (Eq. 9), not P ||e_x||*_mu."""
+    case, solver, h = setup(friction=friction, nu=nu)
+    P = case.load.P
+    capacity = P / float(np.hypot(np.cos(np.radians(friction.beta)) / friction.mu1,
+                                  np.sin(np.radians(friction.beta)) / friction.mu2))
+    sol = solver.solve(h, P=P, Q=(0.5 * capacity, 0.0))
+    assert abs(sol.Qx - 0.5 * capacity) < 1e-8 * capacity
+    assert abs(sol.Qy) < 1e-8 * capacity
+    st = sol.state
+    inside = st.p_n > 0
+    assert np.all(mu_norm(st.p_x, st.p_y, friction)[inside] <= st.p_n[inside] * (1 + 1e-9))
+    assert sol.residual_n < 1e-8 and sol.residual_t < 1e-8
+
+
+@pytest.mark.parametrize("friction", [Friction(2.0, 2.0, 0.0), Friction(0.02, 1.0, 30.0)])
+def test_gross_sliding_at_the_range_edges(friction):
+    """Full sliding along x: every contact cell slips on the friction ellipse."""
+    case, solver, h = setup(friction=friction)
+    sol = solver.solve(h, P=case.load.P, shift=(1e3, 0.0))
+    st = sol.state
+    inside = st.p_n > 0
+    assert np.all(sol.status[inside] == SLIP)
+    ratio = mu_norm(st.p_x, st.p_y, friction)[inside] / st.p_n[inside]
+    assert np.abs(ratio - 1).max() < 1e-6
+
+
+@pytest.mark.parametrize(("n", "L"), [(61, 0.4), (31, 1.6)])
+def test_contact_from_three_cells_to_most_of_the_domain(n, L):
+    """Contact radius ~3 cells (coarse, large domain) and ~75% of the half-width."""
+    case, solver, h = setup(n=n, L=L)
+    sol = solver.solve(h, P=case.load.P)
+    assert abs(sol.P / case.load.P - 1) < 1e-10
+    radius = np.sqrt(np.count_nonzero(sol.state.p_n > 0) * case.grid.dx**2 / np.pi)
+    assert abs(radius - case.hertz_a0) < 1.5 * case.grid.dx
+
+
+def test_tangential_load_beyond_the_friction_ellipse_is_refused():
+    """|Q| past P/||d||_mu (gross sliding) fails clearly before iterating."""
+    friction = Friction(0.02, 1.0, 30.0)
+    case, solver, h = setup(friction=friction)
+    capacity = case.load.P / float(mu_norm(1.0, 0.0, friction))
+    with pytest.raises(ContactNotConverged, match="friction capacity"):
+        solver.solve(h, P=case.load.P, Q=(1.01 * capacity, 0.0))
