@@ -24,25 +24,19 @@ def padded_shape(nx: int, ny: int) -> tuple[int, int]:
     return (sfft.next_fast_len(2 * nx - 1, real=True), sfft.next_fast_len(2 * ny - 1, real=True))
 
 
-def offsets(n: int, d: float, m: int) -> np.ndarray:
-    """Offsets in wrap-around order for a length-m FFT: 0, d, ..., (n-1)d, 0.., -(n-1)d, ..., -d."""
-    k = np.zeros(m)
-    k[:n] = np.arange(n) * d
-    k[m - n + 1 :] = -np.arange(n - 1, 0, -1) * d
+def wrap_offsets(n: int, m: int) -> np.ndarray:
+    """Integer cell offsets in the wrap-around order of a length-m FFT: 0 .. n-1, then the
+    unused middle (marked n, outside the kernel's support), then -(n-1) .. -1."""
+    k = np.full(m, n)
+    k[:n] = np.arange(n)
+    k[m - n + 1 :] = np.arange(-(n - 1), 0)
     return k
 
 
 def kernel_spectrum(coeff: np.ndarray, shape: tuple[int, int], n: tuple[int, int]) -> np.ndarray:
     """rfft2 of a kernel sampled on wrap-around offsets, zero outside |offset| < n cells."""
-    mx, my = shape
-    nx, ny = n
-    mask_x = np.zeros(mx, bool)
-    mask_x[:nx] = True
-    mask_x[mx - nx + 1 :] = True
-    mask_y = np.zeros(my, bool)
-    mask_y[:ny] = True
-    mask_y[my - ny + 1 :] = True
-    k = np.where(mask_x[:, None] & mask_y[None, :], coeff, 0.0)
+    inside = [np.abs(wrap_offsets(ni, mi)) < ni for ni, mi in zip(n, shape, strict=True)]
+    k = np.where(inside[0][:, None] & inside[1][None, :], coeff, 0.0)
     return sfft.rfft2(k, workers=WORKERS)
 
 
@@ -73,8 +67,8 @@ class SurfaceOperator(ConvolutionOperator):
 
     def __init__(self, nx: int, ny: int, dx: float, dy: float, mat: Materials):
         shape = padded_shape(nx, ny)
-        xo = offsets(nx, dx, shape[0])[:, None]
-        yo = offsets(ny, dy, shape[1])[None, :]
+        xo = wrap_offsets(nx, shape[0])[:, None] * dx
+        yo = wrap_offsets(ny, shape[1])[None, :] * dy
         c = surface_coefficients(xo, yo, dx, dy, mat)
         keys = ["xx", "yy", "zz", "xy"] + (["xz", "yz", "zx", "zy"] if mat.K != 0 else [])
         spectra = {k: kernel_spectrum(np.broadcast_to(c[k], shape), shape, (nx, ny)) for k in keys}

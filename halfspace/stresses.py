@@ -20,7 +20,7 @@ import scipy.fft as sfft
 from cases.model import Grid
 from cases.result import STRESS_COMPONENTS, Plane, von_mises
 
-from .operator import WORKERS, padded_shape
+from .operator import WORKERS, padded_shape, wrap_offsets
 from .stress_kernels import coefficient_table
 
 LOADS = ("x", "y", "n")
@@ -125,15 +125,6 @@ class StressEvaluator:
                           for ld in LOADS)
                 out[c][:, :, k] = sfft.irfft2(acc, s=shape, workers=WORKERS)[: g.nx, : g.ny]
         return _finish(out, flip)
-
-
-def wrap_offsets(n: int, m: int) -> np.ndarray:
-    """Integer cell offsets in FFT (wrap-around) order for length m: 0..n-1, then the
-    unused middle (marked n, outside the kernel), then -(n-1)..-1."""
-    k = np.full(m, n)
-    k[:n] = np.arange(n)
-    k[m - n + 1 :] = np.arange(-(n - 1), 0)
-    return k
 
 
 def _table_lookup(kx: np.ndarray, ky: np.ndarray, z: float, dx: float, dy: float,

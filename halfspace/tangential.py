@@ -137,16 +137,11 @@ def solve_tangential(
     for it in range(1, max_iter + 1):
         px, py, dgx, dgy = slip(y1, y2)
         if not accelerate or it % 10 == 1:
-            # residual at the current iterate (y == q without acceleration)
-            if accelerate:
-                px, py, dgx_q, dgy_q = slip(q1, q2)
-                res = tangential_residual(px, py, dgx_q, dgy_q, p_n, fr, c)
-                px, py, dgx, dgy = slip(y1, y2)
-            else:
-                res = tangential_residual(px, py, dgx, dgy, p_n, fr, c)
+            # residual at the current iterate q (y == q without acceleration)
+            current = slip(q1, q2) if accelerate else (px, py, dgx, dgy)
+            res = tangential_residual(*current, p_n, fr, c)
             if res < tol:
-                px, py, dgx, dgy = slip(q1, q2)
-                return TangentialSolution(px, py, dgx, dgy, it, res)
+                return TangentialSolution(*current, it, res)
         g1, g2 = grad(dgx, dgy)
         n1, n2 = proj(y1 - step * g1, y2 - step * g2)
         if accelerate:
