@@ -33,6 +33,15 @@ OPEN, STICK, SLIP = 0, 1, 2
 SLIP_RTOL = 1e-6  # a contact cell slips when its traction is on the friction limit
 
 
+def _tangential_bound(op: SurfaceOperator) -> float:
+    """Largest eigenvalue of the padded circulant of A_tt (2 x 2 symbol per frequency),
+    an upper bound of the aperiodic block it contains."""
+    s = op.spectra
+    half = 0.5 * (s["xx"].real - s["yy"].real)
+    return float((0.5 * (s["xx"].real + s["yy"].real)
+                  + np.sqrt(half**2 + s["xy"].real ** 2)).max())
+
+
 class ContactAtEdge(RuntimeError):
     """The contact area reaches the edge of the potential contact grid."""
 
@@ -82,11 +91,8 @@ class ContactSolver:
         self.method, self.tol, self.max_iter = method, tol, max_iter
         self.op = SurfaceOperator(grid.nx, grid.ny, grid.dx, grid.dy, mat)
         self.dA = grid.dx * grid.dy
-        s = self.op.spectra
-        self.L_nn = float(np.abs(s["zz"]).max())
-        half = 0.5 * (s["xx"].real - s["yy"].real)
-        self.L_tt = float((0.5 * (s["xx"].real + s["yy"].real)
-                           + np.sqrt(half**2 + s["xy"].real ** 2)).max())
+        self.L_nn = float(np.abs(self.op.spectra["zz"]).max())
+        self._boxes: dict[tuple[int, int], tuple[SurfaceOperator, float]] = {}
         self.c_n = 1.0 / self.op.self_zz
         self.c_t = 1.0 / self.op.self_tt
 
@@ -105,12 +111,32 @@ class ContactSolver:
             return polonsky_keer(apply, h, self.dA, self.c_n, **kw)
         return uzawa_normal(apply, h, self.dA, self.c_n, 1.0 / L, **kw)
 
+    def _box_operator(self, n: tuple[int, int]) -> tuple[SurfaceOperator, float]:
+        """Tangential operator on an n-cell sub-grid and its Lipschitz bound (cached)."""
+        if n not in self._boxes:
+            if len(self._boxes) > 64:
+                self._boxes.clear()
+            op = SurfaceOperator(*n, self.grid.dx, self.grid.dy, self.mat)
+            self._boxes[n] = (op, _tangential_bound(op))
+        return self._boxes[n]
+
     def _tangential(self, shift, u_tn, g_prev, p_n, p0) -> TangentialSolution:
+        """Tractions for fixed p_n.  Cells with p_n = 0 carry none, so the problem lives
+        on the bounding box of the contact: the same coefficients (they depend on the
+        offset only, Eq. 42) convolved on a smaller padded grid."""
         b_x = shift[0] + u_tn[0] - g_prev[0]
         b_y = shift[1] + u_tn[1] - g_prev[1]
-        return solve_tangential(self.op.tangential, b_x, b_y, p_n, self.friction, self.L_tt,
-                                self.c_t, p0=p0, method=self.method, tol=self.tol,
-                                max_iter=self.max_iter)
+        rows, cols = np.flatnonzero(p_n.any(axis=1)), np.flatnonzero(p_n.any(axis=0))
+        if rows.size == 0:
+            return TangentialSolution(np.zeros_like(p_n), np.zeros_like(p_n), 0, 0.0)
+        box = np.s_[rows[0]:rows[-1] + 1, cols[0]:cols[-1] + 1]
+        op, L = self._box_operator((rows[-1] + 1 - rows[0], cols[-1] + 1 - cols[0]))
+        sol = solve_tangential(op.tangential, b_x[box], b_y[box], p_n[box], self.friction, L,
+                               self.c_t, p0=(p0[0][box], p0[1][box]), method=self.method,
+                               tol=self.tol, max_iter=self.max_iter)
+        p_x, p_y = np.zeros_like(p_n), np.zeros_like(p_n)
+        p_x[box], p_y[box] = sol.p_x, sol.p_y
+        return TangentialSolution(p_x, p_y, sol.iterations, sol.residual)
 
     def _tangential_load(self, Q, shift0, u_tn, g_prev, p_n, p0):
         """Find the rigid shift g_t,o that makes the tangential resultant equal Q (a.1)."""
@@ -176,12 +202,14 @@ class ContactSolver:
         shift: tuple[float, float] | None = None,
         prev: ContactState | None = None,
         wear_rate: np.ndarray | None = None,
+        guess: ContactState | None = None,
         check_edge: bool = True,
     ) -> StepSolution:
         """Solve one step. Tangential control: ``Q`` (load) or ``shift`` (g_t,o, total);
         neither: the rigid shift of ``prev`` is held.  ``wear_rate`` (mm/MPa per cell)
         makes the wear of the step implicit: the gap gains ``wear_rate * p_n`` (Eq. 23,
-        29 with a known slip norm); the returned gap includes it."""
+        29 with a known slip norm); the returned gap includes it.  ``guess`` only starts
+        the iterations (default: ``prev``'s tractions); the slip history is ``prev``'s."""
         shape = (self.grid.nx, self.grid.ny)
         prev = prev or ContactState.initial(shape)
         if shift is None:
@@ -189,8 +217,9 @@ class ContactSolver:
         shift = np.asarray(shift, float)
         frictional = self.friction.mu1 > 0
         coupled = self.op.coupled and frictional
-        p_x, p_y = prev.p_x, prev.p_y
-        p_n0 = prev.p_n if np.any(prev.p_n > 0) else None
+        start = guess or prev
+        p_x, p_y = start.p_x, start.p_y
+        p_n0 = start.p_n if np.any(start.p_n > 0) else None
         g_prev = (prev.g_x, prev.g_y)
         iters, tsol, zero = 0, None, np.zeros(shape)
         for _ in range(200 if coupled else 1):
@@ -198,7 +227,7 @@ class ContactSolver:
             nsol = self._normal(h_n, P, approach, p_n0, wear_rate)
             iters += nsol.iterations
             if not frictional:
-                tsol = TangentialSolution(zero, zero.copy(), zero.copy(), zero.copy(), 0, 0.0)
+                tsol = TangentialSolution(zero, zero.copy(), 0, 0.0)
                 break
             u_tn = self.op.tangential_from_normal(nsol.p_n)
             if Q is not None:

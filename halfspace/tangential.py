@@ -35,8 +35,6 @@ from .normal import ContactNotConverged
 class TangentialSolution:
     p_x: np.ndarray
     p_y: np.ndarray
-    slip_x: np.ndarray  # slip increment dg_t of the step
-    slip_y: np.ndarray
     iterations: int
     residual: float
 
@@ -55,11 +53,16 @@ def _disc(q1, q2, rho):
     return q1 * s, q2 * s
 
 
-def _ellipse(y1, y2, a, b, iters: int = 100):
+def _ellipse(y1, y2, a, b, t_start=None, iters: int = 100):
     """Euclidean projection onto the ellipses (v1/a)^2 + (v2/b)^2 <= 1 (a, b >= 0):
     v_i = a_i^2 y_i / (a_i^2 + t) with t >= 0 the root of the secular equation
-    sum (a_i y_i / (a_i^2 + t))^2 = 1, by Newton from t = 0 (monotone: the left side is
-    convex and decreasing in t)."""
+    f(t) = sum (a_i y_i / (a_i^2 + t))^2 - 1 = 0.  Returns (v1, v2, t).
+
+    f is convex and decreasing, so Newton from a point left of the root converges
+    monotonically, and a Newton step from the right lands left of it.  Each term alone is
+    <= 1 at the root, so t_lo = max(a|y1| - a^2, b|y2| - b^2) is left of it; the
+    iteration starts from max(t_lo, t_start) (the root of the previous, nearby
+    projection when given) and is kept >= t_lo."""
     a2, b2 = a * a, b * b
     live = (a > 0) & (b > 0)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -69,18 +72,20 @@ def _ellipse(y1, y2, a, b, iters: int = 100):
     if np.any(outside):
         A1, A2 = (a * y1)[outside] ** 2, (b * y2)[outside] ** 2
         aa, bb = a2[outside], b2[outside]
-        tt = np.zeros_like(aa)
+        t_lo = np.maximum(np.sqrt(A1) - aa, np.sqrt(A2) - bb)
+        tt = t_lo if t_start is None else np.maximum(t_lo, t_start[outside])
         for _ in range(iters):
             d1, d2 = aa + tt, bb + tt
-            f = A1 / d1**2 + A2 / d2**2 - 1.0
-            step = f / (2.0 * (A1 / d1**3 + A2 / d2**3))
-            tt = tt + step
+            r1, r2 = A1 / (d1 * d1), A2 / (d2 * d2)
+            step = (r1 + r2 - 1.0) / (2.0 * (r1 / d1 + r2 / d2))
+            tt = np.maximum(tt + step, t_lo)
             if np.all(np.abs(step) <= 1e-15 * (tt + aa + bb)):
                 break
         t[outside] = tt
-    v1 = np.where(live, y1 * a2 / np.where(live, a2 + t, 1.0), 0.0)
-    v2 = np.where(live, y2 * b2 / np.where(live, b2 + t, 1.0), 0.0)
-    return v1, v2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v1 = np.where(outside, y1 * a2 / (a2 + t), np.where(live, y1, 0.0))
+        v2 = np.where(outside, y2 * b2 / (b2 + t), np.where(live, y2, 0.0))
+    return v1, v2, t
 
 
 def solve_tangential(
@@ -101,14 +106,17 @@ def solve_tangential(
     mu1, mu2, beta = fr.mu1, fr.mu2, fr.beta
     if mu1 == 0 or not np.any(p_n > 0):
         z = np.zeros_like(p_n)
-        return TangentialSolution(z, z.copy(), b_x.copy(), b_y.copy(), 0, 0.0)
+        return TangentialSolution(z, z.copy(), 0, 0.0)
     accelerate = method == "cg"
     if accelerate:
         # Euclidean metric: v = p_t in the axes (e1, e2), projection onto the ellipses
         s1 = s2 = 1.0
+        t_last = np.zeros_like(p_n)  # secular roots of the last projection (warm start)
 
         def proj(v1, v2):
-            return _ellipse(v1, v2, mu1 * p_n, mu2 * p_n)
+            nonlocal t_last
+            v1, v2, t_last = _ellipse(v1, v2, mu1 * p_n, mu2 * p_n, t_last)
+            return v1, v2
     else:
         # section 3.4 (III): v = q = M^-1 R p_t, projection onto discs of radius p_n
         s1, s2 = mu1, mu2
@@ -141,7 +149,7 @@ def solve_tangential(
             current = slip(q1, q2) if accelerate else (px, py, dgx, dgy)
             res = tangential_residual(*current, p_n, fr, c)
             if res < tol:
-                return TangentialSolution(*current, it, res)
+                return TangentialSolution(current[0], current[1], it, res)
         g1, g2 = grad(dgx, dgy)
         n1, n2 = proj(y1 - step * g1, y2 - step * g2)
         if accelerate:

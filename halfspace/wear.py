@@ -164,15 +164,16 @@ def fretting(case: Case, progress: bool = False,
     path = fretting_path(fr.amplitude, fr.steps_per_cycle)
     loops, cycles = [], []
     steps: list[StepResult] = []
+    last_cycle: list[ContactState | None] = [None] * len(path)  # warm starts
     for n in tqdm(range(1, n_sim + 1), disable=not progress,
                   desc=f"{case.name} {case.param}", unit="cycle"):
         energy, min_stick, Q_prev, u_prev = 0.0, np.inf, state_Q(state, case), fr.amplitude
-        for u in path:
+        for k, u in enumerate(path):
             sol, dw_a, dw_b = _fretting_step(case, solver, h0 + w_a + w_b, normal, u * d,
-                                             state, J)
+                                             state, J, last_cycle[k])
             w_a, w_b = w_a + dw_a, w_b + dw_b
             _check_wear(w_a, w_b)
-            state = sol.state
+            state = last_cycle[k] = sol.state
             Q = np.array([sol.Qx, sol.Qy])
             energy += 0.5 * float((Q + Q_prev) @ d) * (u - u_prev)
             Q_prev, u_prev = Q, u
@@ -202,17 +203,20 @@ def state_Q(state: ContactState, case: Case) -> np.ndarray:
     return np.array([state.p_x.sum(), state.p_y.sum()]) * dA
 
 
-def _fretting_step(case, solver, h, normal, shift, prev, J):
+def _fretting_step(case, solver, h, normal, shift, prev, J, guess=None):
     """One fretting step, wear semi-implicit: a predictor solve gives the slip; the
     corrector solves the step with the wear J p_n ||dg_t||_i of that slip in the gap
     (implicit in p_n, as step IV, explicit in the slip).  The wear added afterwards is
     exactly the one the corrector's gap contains.  A fixed point in the slip as well does
     not contract for large cycle jumps in partial slip (measured: no convergence in 30
     passes at J = 1000, beta = 90); the error of the lagged slip is O(J) and is what the
-    cycle-jump convergence test measures."""
-    sol = solver.solve(h, **normal, shift=shift, prev=prev)
+    cycle-jump convergence test measures.  The iterations start from ``guess`` (the same
+    point of the previous cycle) and the corrector from the predictor; the slip history
+    is ``prev``'s either way."""
+    sol = solver.solve(h, **normal, shift=shift, prev=prev, guess=guess)
     if case.a.i1 == case.a.i2 == case.b.i1 == case.b.i2 == 0:
         return sol, np.zeros_like(h), np.zeros_like(h)
     sn_a, sn_b = slip_norms(case, sol.slip_x, sol.slip_y)
-    sol = solver.solve(h, **normal, shift=shift, prev=prev, wear_rate=J * (sn_a + sn_b))
+    sol = solver.solve(h, **normal, shift=shift, prev=prev, wear_rate=J * (sn_a + sn_b),
+                       guess=sol.state)
     return sol, J * sn_a * sol.state.p_n, J * sn_b * sol.state.p_n

@@ -293,3 +293,37 @@ def test_pin_on_disk_wear_monotone_and_archard(case):
             bound = p_n * i_max[body] * elastic + 1e-12 * max(w1.max(), 1e-300)
             assert np.all(np.abs((w1 - w0) - eq23) <= bound), f"Eq. 23, body {body}"
         assert np.all(sc["wear_a"] + sc["wear_b"] >= sp["wear_a"] + sp["wear_b"])
+
+
+# ---------------------------------------------------- Euclidean projection (FISTA)
+
+
+@MANY
+@given(y=vectors(), a=magnitudes, ratio=st.floats(-math.log10(50), math.log10(50)),
+       t0=st.floats(0.0, 1e6))
+def test_euclidean_ellipse_projection_is_the_nearest_point(y, a, ratio, t0):
+    """halfspace.tangential._ellipse (the projection of the accelerated solver): inside
+    points unchanged; outside points land on the ellipse with y - v along its normal
+    (the KKT conditions of min |v - y|), and any warm start of the secular root gives
+    the same point (to 1e-9 relative: Newton's last step is below 1e-15 of the root).
+    Semi-axes b/a in [1/50, 50], the orthotropy range of the friction tests."""
+    from halfspace.tangential import _ellipse
+
+    ab = (a, a * 10.0**ratio)
+    a, b = (np.array([v]) for v in ab)
+    y1, y2 = np.array([y[0]]), np.array([y[1]])
+    v1, v2, t = _ellipse(y1, y2, a, b)
+    w1, w2, _ = _ellipse(y1, y2, a, b, np.array([t0]))
+    level = (y[0] / ab[0]) ** 2 + (y[1] / ab[1]) ** 2
+    scale = math.hypot(*y)
+    if level <= 1 - 1e-12:  # clearly inside (on the boundary either branch is right)
+        assert (v1[0], v2[0]) == y
+        return
+    if level <= 1:
+        assert math.hypot(v1[0] - y[0], v2[0] - y[1]) <= 1e-11 * scale
+        return
+    assert abs((v1[0] / ab[0]) ** 2 + (v2[0] / ab[1]) ** 2 - 1) < 1e-9
+    # y - v = t (v1 / a^2, v2 / b^2): the residual of that identity relative to |y|
+    r1, r2 = y[0] - v1[0] - t[0] * v1[0] / ab[0] ** 2, y[1] - v2[0] - t[0] * v2[0] / ab[1] ** 2
+    assert math.hypot(r1, r2) <= 1e-9 * scale
+    assert math.hypot(w1[0] - v1[0], w2[0] - v2[0]) <= 1e-9 * scale
