@@ -24,6 +24,7 @@ from .normal import (
     NormalSolution,
     normal_residual,
     polonsky_keer,
+    roundoff_floor,
     uzawa_normal,
 )
 from .operator import SurfaceOperator
@@ -246,7 +247,8 @@ class ContactSolver:
             g_chk = h_chk + self.op.normal(nsol.p_n) - nsol.approach
             if wear_rate is not None:
                 g_chk = g_chk + wear_rate * nsol.p_n
-            if (normal_residual(nsol.p_n, g_chk, self.c_n) < self.tol
+            if (normal_residual(nsol.p_n, g_chk, self.c_n,
+                                roundoff_floor(self.c_n, h_chk, approach)) < self.tol
                     and change <= self.tol * np.linalg.norm(nsol.p_n)):
                 break
         else:
@@ -269,7 +271,7 @@ class ContactSolver:
             self._check_edge(p_n)
         res_t = (tangential_residual(tsol.p_x, tsol.p_y, slip_x, slip_y, p_n, self.friction,
                                      self.c_t) if frictional and np.any(p_n > 0) else 0.0)
-        res_n = normal_residual(p_n, gap, self.c_n)
+        res_n = normal_residual(p_n, gap, self.c_n, roundoff_floor(self.c_n, h, approach))
         if max(res_n, res_t) > 100 * self.tol:  # the assembled step, checked once more
             raise ContactNotConverged(
                 f"contact step inconsistent after convergence: residuals normal {res_n:.3e}, "

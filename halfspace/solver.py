@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 import numpy as np
 
@@ -133,17 +134,21 @@ def static_step(case: Case, solver: ContactSolver, h: np.ndarray,
     return sol
 
 
-def solve(case: Case, progress: bool = False) -> RunResult:
-    """Solve a case: static cases in one step; wear cases through ``halfspace.wear``."""
+def solve(case: Case, progress: bool = False,
+          on_output: Callable[[StepResult], None] | None = None) -> RunResult:
+    """Solve a case: static cases in one step; wear cases through ``halfspace.wear``.
+    ``on_output`` receives each output step as soon as it is computed."""
     if case.kind != "static":
         from .wear import solve_evolution
 
-        return solve_evolution(case, progress=progress)
+        return solve_evolution(case, progress=progress, on_output=on_output)
     t0 = time.perf_counter()
     solver = contact_solver(case)
     sol = static_step(case, solver, profile(case))
     zero = np.zeros((case.grid.nx, case.grid.ny))
     result = step_result(case, sol, stress_evaluator(case), step=0, wear_a=zero,
                          wear_b=zero.copy(), wall_s=time.perf_counter() - t0)
+    if on_output is not None:
+        on_output(result)
     return RunResult(case=case.name, solver=SOLVER_NAME, param=case.param, steps=[result],
                      meta={"method": case.solver.method, "fft_workers": WORKERS})

@@ -5,17 +5,23 @@ staging directory ``DIR/.<case>.partial``; the manifest is written last and the 
 directory is then renamed onto ``DIR/<case>``, so a case directory is either complete or
 absent, and files of two runs are never mixed.  A run that fails (a solver that does not
 converge, raises, or returns non-finite fields) leaves only the staging directory, with
-``failed.json`` naming the cause; ``report`` and ``gate`` flag it.  Re-running restarts
-the case cleanly.
+``failed.json`` naming the cause; ``report`` and ``gate`` flag it.  A solver whose entry
+point takes ``on_output`` (the half-space solver) hands over each output step as soon as
+it is computed, and the serial runner writes it into the staging directory at once, so
+an interrupted long run keeps the steps it finished there (``fields/<solver>/<param>/``).
+Runs do not resume: re-running says so, discards the staging directory and restarts the
+case cleanly.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import json
 import math
 import os
 import shutil
+import sys
 import time
 import traceback
 from collections.abc import Callable, Iterable, Iterator
@@ -29,7 +35,7 @@ from tqdm.auto import tqdm
 
 from cases.loader import case_path, load_case
 from cases.model import Case, CaseError
-from cases.result import SUMMARY_COLUMNS, RunResult, atomic_path, save_step
+from cases.result import SUMMARY_COLUMNS, RunResult, StepResult, atomic_path, save_step
 
 from . import layout, manifest, solvers
 from .compare import METRICS_COLUMNS, compare_point, step_number
@@ -90,6 +96,7 @@ class CasePlan:
     overrides: dict[str, Any] = field(default_factory=dict)
     sweep: dict[str, Any] | None = None
     dir_name: str = ""
+    staging: Path | None = None  # set by execute(): where output steps are streamed
 
     def units(self) -> list[tuple[int, str]]:
         """(point index, solver) pairs to run, point-major, solvers in registry order."""
@@ -189,12 +196,37 @@ def _check_finite(result: RunResult, solver: str) -> None:
                 raise RuntimeError(f"non-finite values in {what} at output step {k}")
 
 
+def takes_on_output(fn: Callable[..., RunResult]) -> bool:
+    """Whether a solver entry point accepts an ``on_output`` callback."""
+    try:
+        return "on_output" in inspect.signature(fn).parameters
+    except (TypeError, ValueError):
+        return False
+
+
+def step_writer(root: Path, solver: str, param: str) -> Callable[[StepResult], None]:
+    """A callback saving each output step of one unit into ``root`` as it arrives."""
+    count = 0
+
+    def write(step: StepResult) -> None:
+        nonlocal count
+        save_step(layout.step_file(root, solver, param, step_number(step, count)), step)
+        count += 1
+
+    return write
+
+
 def run_unit(fn: Callable[..., RunResult], case: Case, solver: str, index: int,
-             progress: bool = False) -> UnitOutcome:
-    """Run one solver on one sweep point; failures are captured, never raised."""
+             progress: bool = False,
+             on_output: Callable[[StepResult], None] | None = None) -> UnitOutcome:
+    """Run one solver on one sweep point; failures are captured, never raised.
+    ``on_output`` is passed on to solvers that accept it."""
     t0 = time.perf_counter()
     try:
-        result = fn(case, progress=progress)
+        if on_output is not None and takes_on_output(fn):
+            result = fn(case, progress=progress, on_output=on_output)
+        else:
+            result = fn(case, progress=progress)
         if not isinstance(result, RunResult) or not result.steps:
             raise RuntimeError(f"returned {type(result).__name__} without output steps")
         _check_finite(result, solver)
@@ -352,6 +384,10 @@ def claim_staging(out: Path, name: str) -> Path:
             pid = 0
         if pid and pid != os.getpid() and _pid_alive(pid):
             raise UserError(f"another contact-vv run (pid {pid}) is writing {staging}")
+        kept = sum(1 for _ in staging.rglob("step_*.npz"))
+        print(f"contact-vv: {staging} holds an interrupted run of {name} ({kept} output "
+              "step file(s) kept); runs do not resume: discarding it and restarting "
+              f"{name} from the beginning", file=sys.stderr)
         shutil.rmtree(staging)
     try:
         staging.mkdir(parents=True)
@@ -392,10 +428,13 @@ Executor = Callable[[CasePlan, list[tuple[int, str]], bool], Iterable[UnitOutcom
 
 def serial_executor(plan: CasePlan, units: list[tuple[int, str]],
                     progress: bool) -> Iterator[UnitOutcome]:
-    """Run units one after the other in this process."""
+    """Run units one after the other in this process; output steps are written into the
+    staging directory as they are computed."""
     fns = {s: solvers.resolve(s) for s in {s for _, s in units}}
     for i, s in units:
-        yield run_unit(fns[s], plan.points[i], s, i, progress=False)
+        case = plan.points[i]
+        writer = step_writer(plan.staging, s, case.param) if plan.staging else None
+        yield run_unit(fns[s], case, s, i, progress=False, on_output=writer)
 
 
 def execute(plan: CasePlan, out: Path, *, executor: Executor = serial_executor,
@@ -409,6 +448,7 @@ def execute(plan: CasePlan, out: Path, *, executor: Executor = serial_executor,
     t0 = time.perf_counter()
     sources = manifest.source_hashes()
     staging = claim_staging(out, plan.dir_name)
+    plan.staging = staging
     final = layout.case_dir(out, plan.dir_name)
     if final.exists() and not (final.is_dir() and layout.only_own_files(final)):
         shutil.rmtree(staging)

@@ -105,6 +105,18 @@ def solve_slow(case: Case, progress: bool = False) -> RunResult:
     return solve_ic(case, progress)
 
 
+def solve_streaming(case: Case, progress: bool = False, on_output=None) -> RunResult:
+    """The fake ic with N_STEPS output steps, one every FAKE_SLEEP seconds, each handed to
+    ``on_output`` as it is computed (as the half-space wear runs do)."""
+    steps = []
+    for k in range(N_STEPS):
+        time.sleep(float(os.environ.get("FAKE_SLEEP", "0.5")))
+        steps.append(hertz_step(case, 1.0 + ERROR, k))
+        if on_output is not None:
+            on_output(steps[-1])
+    return RunResult(case=case.name, solver="ic", param=case.param, steps=steps)
+
+
 class NotConverged(RuntimeError):
     pass
 

@@ -23,7 +23,7 @@ DRIVER = f"""
 import sys
 sys.path[:0] = [{str(ROOT)!r}, {str(TESTS)!r}]
 from reports import solvers
-solvers.REGISTRY.update(ic="test_cli_fakes:solve_slow", fem="no_such_module_xyz:solve",
+solvers.REGISTRY.update(ic="test_cli_fakes:IC_SOLVER", fem="no_such_module_xyz:solve",
                         analytic="test_cli_fakes:solve_exact")
 solvers.APPLICABLE["analytic"] = "test_cli_fakes:has_solution"
 from reports.cli import main
@@ -31,11 +31,11 @@ sys.exit(main(sys.argv[1:]))
 """
 
 
-def start(case: Path, out: Path, sleep: float) -> subprocess.Popen:
+def start(case: Path, out: Path, sleep: float, ic: str = "solve_slow") -> subprocess.Popen:
     env = dict(os.environ, FAKE_SLEEP=str(sleep))
-    return subprocess.Popen([sys.executable, "-c", DRIVER, "run", "--no-progress", str(case),
-                             "--out", str(out)], env=env, stdout=subprocess.PIPE,
-                            stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen([sys.executable, "-c", DRIVER.replace("IC_SOLVER", ic), "run",
+                             "--no-progress", str(case), "--out", str(out)], env=env,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
 
 
 def wait_for(path: Path, proc: subprocess.Popen, timeout: float = 60.0) -> None:
@@ -103,3 +103,36 @@ def test_a_live_run_is_not_disturbed(tmp_path, monkeypatch, capsys):
     finally:
         sleeper.kill()
         sleeper.wait()
+
+
+def test_finished_output_steps_are_kept_and_the_rerun_says_it_restarts(tmp_path, monkeypatch,
+                                                                       capsys):
+    """Issue 3 item 5: a solver that hands over its output steps as it goes (on_output)
+    has each one written into the staging directory at once; a killed run keeps them
+    there, and the re-run says that it discards them and restarts."""
+    import test_cli_fakes as fakes
+
+    from cases.result import load_step
+
+    case = write_case(tmp_path, SWEEP)
+    out = tmp_path / "res"
+    proc = start(case, out, 0.7, ic="solve_streaming")
+    staging = layout.staging_dir(out, "small")
+    unit = layout.unit_dir(staging, "ic", "mu=0.25")
+    wait_for(unit / "step_0001.npz", proc)
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(60)
+    proc.communicate()
+    kept = sorted(p.name for p in unit.glob("step_*.npz"))
+    assert kept[:2] == ["step_0000.npz", "step_0001.npz"]
+    assert not (staging / layout.SUMMARY).exists()  # the unit never finished
+    step = load_step(unit / "step_0001.npz")
+    assert step.scalars["step"] == 1 and step.scalars["p_max"] > 0
+
+    fakes.use(monkeypatch, ic="solve_ic", analytic="solve_exact")
+    assert main(["run", "--no-progress", str(case), "--out", str(out)]) == 0
+    err = capsys.readouterr().err
+    assert "holds an interrupted run of small" in err
+    assert f"({len(kept)} output step file(s) kept)" in err
+    assert "restarting small from the beginning" in err
+    assert not staging.exists() and (out / "small" / layout.SUMMARY).exists()

@@ -106,3 +106,21 @@ def test_tangential_load_beyond_the_friction_ellipse_is_refused():
     capacity = case.load.P / float(mu_norm(1.0, 0.0, friction))
     with pytest.raises(ContactNotConverged, match="friction capacity"):
         solver.solve(h, P=case.load.P, Q=(1.01 * capacity, 0.0))
+
+
+@pytest.mark.parametrize("eps", [1e-11, 1e-13, 1e-15])
+def test_contact_worn_through_under_displacement_control(eps):
+    """Approach held while wear levels the profile to the approach (fretting at held
+    approach, beta = 0, wears that far): the pressure nearly vanishes, and round-off of the
+    gap (1e-16 of it) exceeds tol * ||p_n||.  The step must still converge and pass its
+    final check (the residual is measured beyond the gap's round-off floor), giving the
+    pressure of the remaining overlap eps: sum p_n dA / (that of a 1 mm overlap) = eps."""
+    _, solver, h = setup()
+    approach = 0.001
+    worn = np.maximum(h, approach - eps)  # flat at eps below the approach
+    sol = solver.solve(worn, approach=approach, shift=(0.0, 0.0))
+    assert sol.P > 0 and sol.residual_n < solver.tol
+    # linearity: the load of a uniform overlap eps on the flat, against eps = 1e-9 mm, to
+    # the gap's round-off (~2e-18 mm measured; 2.5x margin) relative to eps
+    ref = solver.solve(np.maximum(h, approach - 1e-9), approach=approach, shift=(0.0, 0.0))
+    assert sol.P / ref.P == pytest.approx(eps / 1e-9, rel=1e-6 + 5e-18 / eps)
