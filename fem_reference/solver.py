@@ -16,7 +16,10 @@ Load path:
 Surface fields on the case grid (cell centres; a quarter/half model is mirrored, and
 components odd under a mirror vanish on the mirror plane):
 ``p_n, p_x, p_y`` are the L2 projections of the Gauss-point penalty tractions on the P2
-surface space, zero outside the contact; ``gap`` from the full FE displacements;
+surface space, limited to the range of the Gauss-point values around each point (see
+:meth:`_Run._recover`: the projection rings where the traction falls to zero inside a
+facet, at the edge of a worn flat), zero outside the contact; ``gap`` from the full FE
+displacements;
 ``state``: a cell is closed inside the contact boundary r(θ), the outermost point with
 a gap below ``GAP_TOL`` × δ0 along rays from the centre (robust against the penalty:
 see :func:`contact_states`), stick or slip by the return map evaluated at the cell
@@ -27,7 +30,7 @@ normal loading; static full sliding: the unit slip direction).
 Scalars: ``P, Qx, Qy`` the resultants of the Gauss-point tractions; ``contact_area`` the
 area inside r(θ), ``stick_area`` the Gauss-point integral of the stick states,
 ``slip_area`` the rest; ``a_x, a_y`` half the closed length of the lines through the
-centre; ``p_max`` the largest nodal value of the projected pressure; ``vm_max`` and its
+centre; ``p_max`` the largest nodal value of the limited projected pressure; ``vm_max`` and its
 location over both planes (the plane samples); ``wall_s`` the time since ``solve``
 started.  Extra: ``approach`` (δ), ``shift_x/y`` (g_t,o), ``P_reaction`` (the support
 reaction of the block: global equilibrium), ``vm_axis_max``/``vm_axis_z`` (the on-axis
@@ -171,6 +174,9 @@ class _Run:
         mapped, self.sx, self.sy = m.sym.map(xy)
         N, found = surf.interpolation(mapped)
         self.Nprobe = N
+        facet, _ = surf.locate(mapped)
+        # per probe: the surface nodes around it (of its facet) for the limiter of _recover
+        self.probe_nodes = np.where(found[:, None], surf.facets[np.maximum(facet, 0)], -1)
         self.probes = Points(G=surf.operator(N)[:, m.cidx].tocsr(), w=np.zeros(xy.shape[0]), xy=xy,
                              h=(xy**2).sum(axis=1) / (2 * R), inside=found)
         Ntop, found_top = m.top.interpolation(mapped)
@@ -320,6 +326,27 @@ class _Run:
         """L2 projection of quadrature-point values on the P2 surface space (nodal)."""
         return self.mass.solve(self.model.surface.Nq.T @ (self.quad.w * values))
 
+    def _recover(self, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Limited L2 projection of quadrature-point tractions: (nodal values, probe values).
+
+        The projection on the P2 surface space, clipped at each node to the range of the
+        quadrature-point values of the facets around it (its patch), and at each probe to
+        the range of the patches of its facet's nodes.  Where the traction is smooth the
+        projection lies inside those ranges and is unchanged; where it falls within a
+        fraction of a facet (the edge of a worn flat: from about P/(π a²) to 0 across
+        p Δw/|∇g| ≪ h) the projection rings like a Fourier series and overshoots by
+        10-30 % of the jump, in both directions, over the last element, at any h.  Not a
+        property of the traction the model carries: the Gauss-point values are bounded.
+        """
+        surf = self.model.surface
+        nodal = self._project(values)
+        lo, hi = surf.node_ranges(values)
+        probe = self.Nprobe @ nodal
+        found = self.probe_nodes[:, 0] >= 0
+        idx = self.probe_nodes[found]
+        probe[found] = np.clip(probe[found], lo[idx].min(axis=1), hi[idx].max(axis=1))
+        return np.clip(nodal, lo, hi), probe
+
     def _output(self, step: int, sol, pev, slip: np.ndarray, iterations: int,
                 s: float = float("nan")) -> StepResult:
         case, m = self.case, self.model
@@ -335,9 +362,9 @@ class _Run:
         pr = self.probes
         gap = pr.h + pr.wear_a + pr.wear_b - self.delta + (-uza - uzb)
         # projected tractions
-        pn_nodes = self._project(ev.pn)
-        tx_nodes = self._project(ev.t[:, 0])
-        ty_nodes = self._project(ev.t[:, 1])
+        pn_nodes, pn_probe = self._recover(ev.pn)
+        _, tx_probe = self._recover(ev.t[:, 0])
+        _, ty_probe = self._recover(ev.t[:, 1])
         eps = self.gap_tol
         ng, nl = self.ngrid, self.nline
         r_edge = _ray_extent(self.ray_r, pev.gn[ng + 2 * nl:].reshape(self.theta.size, -1),
@@ -359,9 +386,9 @@ class _Run:
             area = 0.5 * float(np.sum(r_edge**2)) * (self.theta[1] - self.theta[0])
         else:
             area = 0.5 * float(np.trapezoid(r_edge**2, self.theta))
-        pn = np.where(contact, np.maximum(self.Nprobe @ pn_nodes, 0.0), 0.0)
-        px = np.where(contact, self.sx * (self.Nprobe @ tx_nodes), 0.0)
-        py = np.where(contact, self.sy * (self.Nprobe @ ty_nodes), 0.0)
+        pn = np.where(contact, np.maximum(pn_probe, 0.0), 0.0)
+        px = np.where(contact, self.sx * tx_probe, 0.0)
+        py = np.where(contact, self.sy * ty_probe, 0.0)
         shape = (g.nx, g.ny)
         surface = {
             "p_n": pn[:ng].reshape(shape),
@@ -378,9 +405,9 @@ class _Run:
         for k, name in enumerate(("line_x", "line_y")):
             sl = slice(ng + k * nl, ng + (k + 1) * nl)
             self.tables[f"{name}/{step}"] = {
-                "s": self.line.copy(), "p_n": (self.Nprobe @ pn_nodes)[sl],
-                "p_x": (self.sx * (self.Nprobe @ tx_nodes))[sl],
-                "p_y": (self.sy * (self.Nprobe @ ty_nodes))[sl],
+                "s": self.line.copy(), "p_n": pn_probe[sl],
+                "p_x": (self.sx * tx_probe)[sl],
+                "p_y": (self.sy * ty_probe)[sl],
                 "gap": pev.gn[sl], "state": pstate[sl],
             }
         a_x = _semi_width(self.line, pev.gn[ng:ng + nl], pr.inside[ng:ng + nl], eps)

@@ -133,6 +133,18 @@ class ContactSurface:
             blocks.append(N @ P)
         return sp.vstack(blocks, format="csr")
 
+    def node_ranges(self, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Range (min, max) per surface node of quadrature-point ``values`` over the facets
+        that contain the node (its patch)."""
+        v = np.asarray(values, dtype=float).reshape(self.facets.shape[0], -1)
+        fmin, fmax = v.min(axis=1), v.max(axis=1)
+        lo = np.full(self.nnodes, np.inf)
+        hi = np.full(self.nnodes, -np.inf)
+        for k in range(self.facets.shape[1]):
+            np.minimum.at(lo, self.facets[:, k], fmin)
+            np.maximum.at(hi, self.facets[:, k], fmax)
+        return lo, hi
+
     def mass(self) -> sp.csr_matrix:
         """Surface mass matrix ``∫ φ_i φ_j dA`` over the contact zone (exact for P2)."""
         return (self.Nq.T @ sp.diags(self.quad_w) @ self.Nq).tocsr()
