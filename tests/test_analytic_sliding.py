@@ -129,3 +129,23 @@ def test_vm_maximum_versus_friction():
                               + (s["szz"] - s["sxx"]) ** 2)
                        + 3 * (s["sxy"] ** 2 + s["sxz"] ** 2 + s["syz"] ** 2))[0])
     assert vm == pytest.approx(sl.trailing_edge_von_mises(jump.mu, NU), rel=1e-6)
+
+
+@pytest.mark.parametrize("mu", [0.35, 0.5, 0.65])
+def test_trailing_edge_maximum_is_a_cusp_narrower_than_any_cell(mu):
+    """For mu above the jump (0.305) the sigma_VM maximum over the xz plane is the value
+    exactly at the trailing edge x = -a, z = 0, and it is a cusp: 0.01 a inside the
+    contact sigma_VM is already more than 1.5 % lower, 0.01 a outside more than 8 %.  A
+    solver that samples the surface at cell centres (the nearest one up to half a cell
+    from the edge) therefore cannot meet a 1 % tolerance on this maximum unless its cells
+    are narrower than ~0.01 a (measured on the half-space solver: 4.7 % below at
+    dx = 0.13 a0, still 4.1 % at dx = 0.017 a0 for mu = 0.5)."""
+    from cases.result import STRESS_COMPONENTS, von_mises
+
+    x = np.array([-1.0, -0.99, -1.01])
+    s = sl.sliding_sphere_stresses(x, 0 * x, 0 * x, 1.0, 1.0, mu, NU)
+    edge, inside, outside = von_mises(*(s[c] for c in STRESS_COMPONENTS))
+    ref = sl.vm_max_sweep([mu], NU)[0]
+    assert ref.z == 0 and ref.x == pytest.approx(-1.0, abs=1e-3)
+    assert edge == pytest.approx(ref.value, rel=1e-3)
+    assert inside < (1 - 0.015) * edge and outside < (1 - 0.08) * edge
