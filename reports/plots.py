@@ -88,6 +88,23 @@ def traction_profiles(steps: Mapping[str, StepResult], a0: float, p0: float,
     return fig
 
 
+def _difference_panel(fig: Figure, ax, axes_a, field_a, axes_b, field_b, a0: float,
+                      p0: float, label: str) -> bool:
+    """(A − B)/p0 on the common sample grid of two 2D fields, symmetric colour scale;
+    False (axis switched off) when the grids share no 2D region."""
+    u = common_axis(axes_a[0], axes_b[0])
+    v = common_axis(axes_a[1], axes_b[1])
+    if not (u.size > 1 and v.size > 1):
+        ax.set_axis_off()
+        return False
+    d = (sample(axes_a, field_a, (u, v)) - sample(axes_b, field_b, (u, v))) / p0
+    lim = float(np.nanmax(np.abs(d))) if np.isfinite(d).any() else 1.0
+    im = ax.pcolormesh(u / a0, v / a0, d.T, cmap="RdBu_r", vmin=-lim or -1, vmax=lim or 1,
+                       shading="nearest")
+    fig.colorbar(im, ax=ax, label=label)
+    return True
+
+
 def difference_maps(steps: Mapping[str, StepResult], a0: float, p0: float,
                     field: str = "p_n", title: str = "") -> Figure | None:
     """(A − B)/p0 of a surface field on the common sample grid of every pair."""
@@ -99,16 +116,10 @@ def difference_maps(steps: Mapping[str, StepResult], a0: float, p0: float,
                              figsize=(4.6 * len(todo), 3.8))
     for ax, (a, b) in zip(axes[0], todo, strict=True):
         sa, sb = steps[a], steps[b]
-        xs, ys = common_axis(sa.x, sb.x), common_axis(sa.y, sb.y)
-        if not (xs.size > 1 and ys.size > 1):
-            ax.set_axis_off()
+        if not _difference_panel(fig, ax, (sa.x, sa.y), sa.surface[field], (sb.x, sb.y),
+                                 sb.surface[field], a0, p0,
+                                 f"({field}[{a}] − {field}[{b}]) / p0"):
             continue
-        d = (sample((sa.x, sa.y), sa.surface[field], (xs, ys))
-             - sample((sb.x, sb.y), sb.surface[field], (xs, ys))) / p0
-        lim = float(np.nanmax(np.abs(d))) if np.isfinite(d).any() else 1.0
-        im = ax.pcolormesh(xs / a0, ys / a0, d.T, cmap="RdBu_r", vmin=-lim or -1,
-                           vmax=lim or 1, shading="nearest")
-        fig.colorbar(im, ax=ax, label=f"({field}[{a}] − {field}[{b}]) / p0")
         half = 1.4 * _extent(steps, a0)
         ax.set_xlim(-half, half)
         ax.set_ylim(-half, half)
@@ -134,16 +145,10 @@ def plane_difference_maps(steps: Mapping[str, StepResult], a0: float, p0: float,
     half = 3.0 * _extent(steps, a0)
     for ax, (a, b) in zip(axes[0], todo, strict=True):
         pa, pb = have[a], have[b]
-        ss, zs = common_axis(pa.s, pb.s), common_axis(pa.z, pb.z)
-        if not (ss.size > 1 and zs.size > 1):
-            ax.set_axis_off()
+        if not _difference_panel(fig, ax, (pa.s, pa.z), pa.fields["vm"], (pb.s, pb.z),
+                                 pb.fields["vm"], a0, p0, f"(σ_VM[{a}] − σ_VM[{b}]) / p0"):
             continue
-        d = (sample((pa.s, pa.z), pa.fields["vm"], (ss, zs))
-             - sample((pb.s, pb.z), pb.fields["vm"], (ss, zs))) / p0
-        lim = float(np.nanmax(np.abs(d))) if np.isfinite(d).any() else 1.0
-        im = ax.pcolormesh(ss / a0, zs / a0, d.T, cmap="RdBu_r", vmin=-lim or -1,
-                           vmax=lim or 1, shading="nearest")
-        fig.colorbar(im, ax=ax, label=f"(σ_VM[{a}] − σ_VM[{b}]) / p0")
+        ss = common_axis(pa.s, pb.s)
         ax.set_xlim(max(ss.min() / a0, -half), min(ss.max() / a0, half))
         ax.invert_yaxis()
         ax.set_xlabel(f"{plane[0]} / a0")
