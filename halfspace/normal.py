@@ -66,6 +66,24 @@ def _check_finite(arr: np.ndarray, what: str) -> None:
         raise ContactNotConverged(f"{what} became NaN/Inf")
 
 
+def _start(h: np.ndarray, c: float, P: float | None, approach: float | None,
+           floor: float | None) -> tuple[bool, float, NormalSolution | None]:
+    """Checks shared by the normal solvers: (load control?, residual floor, the solution
+    when displacement control leaves no overlap beyond round-off, else None)."""
+    load = P is not None
+    if load == (approach is not None):
+        raise ValueError("give exactly one of P and approach")
+    if not np.all(np.isfinite(h)):
+        raise ContactNotConverged("the separation profile (geometry + wear) contains NaN/Inf")
+    if floor is None:
+        floor = roundoff_floor(c, h, approach)
+    if not load:
+        g = h - approach
+        if normal_residual(np.zeros_like(g), g, c, floor) == 0.0:  # touching, no load
+            return load, floor, NormalSolution(np.zeros_like(g), approach, g, 0, 0.0)
+    return load, floor, None
+
+
 def polonsky_keer(
     apply: Callable[[np.ndarray], np.ndarray],
     h: np.ndarray,
@@ -86,17 +104,10 @@ def polonsky_keer(
     (``approach``): the gap is ``h - approach + A p`` and no rescaling is done.  The
     residual is measured beyond ``floor`` (default :func:`roundoff_floor`).
     """
-    load = P is not None
-    if load == (approach is not None):
-        raise ValueError("give exactly one of P and approach")
-    if not np.all(np.isfinite(h)):
-        raise ContactNotConverged("the separation profile (geometry + wear) contains NaN/Inf")
+    load, floor, unloaded = _start(h, c, P, approach, floor)
+    if unloaded is not None:
+        return unloaded
     hh = h if load else h - approach
-    if floor is None:
-        floor = roundoff_floor(c, h, approach)
-    if not load and normal_residual(np.zeros_like(hh), hh, c, floor) == 0.0:
-        # touching without load: no overlap beyond round-off of the gap
-        return NormalSolution(np.zeros_like(hh), approach, hh.copy(), 0, 0.0)
     if p0 is not None and np.any(p0 > 0):
         p = np.array(p0, dtype=float)
     else:
@@ -174,11 +185,9 @@ def uzawa_normal(
 ) -> NormalSolution:
     """Section 3.4 (III) for the normal tractions: p <- max(0, p - r g) (step r <= 1/lambda_max);
     the residual is measured beyond ``floor`` (default :func:`roundoff_floor`)."""
-    load = P is not None
-    if load == (approach is not None):
-        raise ValueError("give exactly one of P and approach")
-    if floor is None:
-        floor = roundoff_floor(c, h, approach)
+    load, floor, unloaded = _start(h, c, P, approach, floor)
+    if unloaded is not None:
+        return unloaded
     p = np.zeros_like(h) if p0 is None else np.array(p0, dtype=float)
     delta = 0.0 if load else approach
     res = np.inf

@@ -124,3 +124,14 @@ def test_contact_worn_through_under_displacement_control(eps):
     # the gap's round-off (~2e-18 mm measured; 2.5x margin) relative to eps
     ref = solver.solve(np.maximum(h, approach - 1e-9), approach=approach, shift=(0.0, 0.0))
     assert sol.P / ref.P == pytest.approx(eps / 1e-9, rel=1e-6 + 5e-18 / eps)
+
+
+@pytest.mark.parametrize("method", ["cg", "uzawa"])
+def test_no_overlap_under_displacement_control_carries_no_load(method):
+    """Both normal solvers: an approach short of the profile (no overlap) gives p_n = 0
+    at once (the Uzawa iteration used to wait for a pressure that never comes)."""
+    case, _, h = setup()
+    solver = ContactSolver(case.grid, Materials.from_bodies(case.a, case.b), FRICTIONLESS,
+                           method=method, tol=1e-10)
+    sol = solver.solve(h + 1e-6, approach=1e-7)
+    assert sol.P == 0.0 and sol.iterations == 0 and not np.any(sol.state.p_n)
