@@ -21,6 +21,12 @@ Metrics, with A the first and B the second (reference) solver of the pair:
 ``l2`` = ‖A − B‖₂ / ‖B‖₂ and ``max`` = max|A − B| / max|B| on common sample points (for
 ``p_x`` and ``p_y`` the denominators are the norms of B's whole tangential traction
 |p_t| = √(p_x² + p_y²), so a component that is nearly zero in both is not inflated);
+max norms leave out the *edge band*, the sample points within one cell of either
+solver's contact boundary (on the planes: within one cell of the boundary's surface
+points), where a cell average and a point value of a traction that drops to zero inside
+the cell differ by a fraction of the traction itself — O(1) for the step-like pressure
+edge of a worn contact at any grid size (:mod:`reports.compare`); the L2 norms, the
+semi-widths and the contact area still measure the edge;
 ``rel`` = |A − B| / |B|; ``cells`` = a length difference in units of the coarser of the
 two solvers' cell sizes; ``a0`` = a length difference in units of the Hertz radius.
 

@@ -12,8 +12,17 @@ import test_cli_fakes as fakes
 
 from cases.loader import load_case
 from cases.model import CaseError
+from cases.result import Plane, StepResult
 from reports import tolerances as tol
-from reports.compare import common_axis, compare_point, field_errors, sample
+from reports.compare import (
+    common_axis,
+    compare_point,
+    compare_steps,
+    contact_edges,
+    field_errors,
+    interior,
+    sample,
+)
 from reports.scales import hertz_scales
 
 README = Path(__file__).resolve().parent.parent / "cases" / "README.md"
@@ -63,6 +72,51 @@ def test_traction_components_are_measured_against_the_whole_traction():
     # |Δp_y| = 0.002 against ‖p_t‖ ≈ 3, not against ‖p_y‖ ≈ 0.0014
     assert err["l2"] == pytest.approx(0.002 / np.linalg.norm(np.hypot(px_b, py_b)), rel=1e-12)
     assert err["max"] == pytest.approx(0.002 / np.hypot(2.0, 0.001), rel=1e-12)
+
+
+def test_interior_drops_the_boundary_ring_of_a_contact():
+    x = np.arange(-5, 6, dtype=float)
+    disc = np.hypot(x[:, None], x[None, :]) <= 3.5
+    inner = interior(disc)
+    # a point is interior iff its 3 x 3 neighbourhood lies in the disc
+    want = np.array([[disc[max(i - 1, 0):i + 2, max(j - 1, 0):j + 2].all()
+                      for j in range(11)] for i in range(11)])
+    np.testing.assert_array_equal(inner, want)
+    assert inner.sum() == 13 and disc.sum() == 37  # |i|, |j| <= 1, and (±2, 0), (0, ±2)
+    np.testing.assert_allclose(contact_edges(x, disc[:, 5].astype(float)), [-3.5, 3.5])
+
+
+def _flat_punch_step(radius: float, x: np.ndarray, vm_edge: float) -> StepResult:
+    """Uniform pressure 1 on a disc, and a σ_VM plane that is 1 except ``vm_edge`` at
+    the surface samples within one cell of the contact boundary (the midpoint between
+    the last sample in contact, s = ±radius, and the first outside)."""
+    p_n = np.where(np.hypot(x[:, None], x[None, :]) <= radius, 1.0, 0.0)
+    z = np.linspace(0.0, 1.0, 6)
+    vm = np.ones((x.size, z.size))
+    h = x[1] - x[0]
+    vm[np.abs(np.abs(x) - (radius + 0.5 * h)) < h, 0] = vm_edge
+    plane = Plane(s=x, z=z, fields={"vm": vm})
+    return StepResult(scalars={}, x=x, y=x, surface={"p_n": p_n},
+                      planes={"xz": plane, "yz": plane})
+
+
+def test_max_norms_leave_out_the_edge_band():
+    """Two uniform-pressure contacts whose boundaries cut different cells (a worn,
+    step-edged pressure sampled on grids half a cell apart): the max norms see no
+    difference off the one-cell edge band, the L2 norms still see the edge cells."""
+    x = np.linspace(-1.0, 1.0, 41)  # h = 0.05
+    sa = _flat_punch_step(0.5, x, vm_edge=1.0)
+    sb = _flat_punch_step(0.5, x, vm_edge=1.6)
+    sa.surface["p_n"][np.abs(np.hypot(x[:, None], x[None, :]) - 0.5) < 0.03] = 0.6
+    rows = {(q, m): v for q, m, v in compare_steps(sa, sb, a0=0.5, p0=1.0)}
+    assert rows[("p_n", "max")] == pytest.approx(0.0, abs=1e-15)
+    assert rows[("p_n", "l2")] > 0.05
+    assert rows[("vm_xz", "max")] == pytest.approx(0.0, abs=1e-15)
+    assert rows[("vm_xz", "l2")] > 0.02
+    # a difference one cell farther inside is measured by the max norm
+    sb.surface["p_n"][np.abs(np.hypot(x[:, None], x[None, :]) - 0.4) < 0.03] = 0.7
+    rows = {(q, m): v for q, m, v in compare_steps(sa, sb, a0=0.5, p0=1.0)}
+    assert rows[("p_n", "max")] == pytest.approx(0.3, rel=1e-12)
 
 
 def test_pair_metrics_on_different_grids():
