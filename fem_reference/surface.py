@@ -72,6 +72,7 @@ class ContactSurface:
         # quadrature points
         X, W = get_quadrature(RefTri, quad_order)  # reference (ξ, η), weights sum 1/2
         lam = np.vstack([1.0 - X[0] - X[1], X[0], X[1]]).T  # (nq, 3)
+        self.quad_lam = lam
         nf, nq = self.facets.shape[0], lam.shape[0]
         phi = p2_triangle_values(lam)  # (nq, 6)
         self.quad_xy = np.einsum("qk,fkd->fqd", lam, v).reshape(-1, 2)
@@ -144,6 +145,47 @@ class ContactSurface:
             np.minimum.at(lo, self.facets[:, k], fmin)
             np.maximum.at(hi, self.facets[:, k], fmax)
         return lo, hi
+
+    def p1_projection(self) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
+        """(F, M, E) of the L2 projection of quadrature-point values on continuous P1.
+
+        ``F`` (nnodes x nquad): values -> ``∫ λ_i v`` at the vertex nodes (zero rows at
+        the edge nodes); ``M`` (nnodes x nnodes): the P1 mass matrix ``∫ λ_i λ_j`` with
+        unit diagonal at the edge nodes; ``E``: vertex values -> edge-node values (the
+        mean of the edge's two vertices).  Nodal values: ``E'`` applied to ``M⁻¹ F v``.
+        """
+        nf, nq = self.facets.shape[0], self.quad_lam.shape[0]
+        vert = self.facets[:, :3]
+        lam = np.tile(self.quad_lam, (nf, 1))  # (nf nq, 3)
+        rows = np.repeat(vert, nq, axis=0)  # (nf nq, 3) vertex nodes
+        cols = np.repeat(np.arange(nf * nq)[:, None], 3, axis=1)
+        F = sp.csr_matrix(((self.quad_w[:, None] * lam).ravel(), (rows.ravel(), cols.ravel())),
+                          shape=(self.nnodes, nf * nq))
+        Nv = sp.csr_matrix((lam.ravel(), (cols.ravel(), rows.ravel())),
+                           shape=(nf * nq, self.nnodes))
+        M = (Nv.T @ sp.diags(self.quad_w) @ Nv).tocsr()
+        is_vert = np.zeros(self.nnodes, dtype=bool)
+        is_vert[vert.ravel()] = True
+        M = (M + sp.diags((~is_vert).astype(float))).tocsr()
+        ends = vert[:, TRI_EDGES]  # (nf, 3, 2)
+        mid = self.facets[:, 3:].ravel()
+        E = sp.csr_matrix((np.full(2 * mid.size, 0.5), (np.repeat(mid, 2), ends.reshape(-1))),
+                          shape=(self.nnodes, self.nnodes))
+        count = np.bincount(mid, minlength=self.nnodes).astype(float)
+        E = sp.diags(np.where(count > 0, 1.0 / np.maximum(count, 1.0), 0.0)) @ E
+        E = (E + sp.diags(is_vert.astype(float))).tocsr()
+        return F, M, E
+
+    def p1_interpolation(self, xy: np.ndarray) -> tuple[sp.csr_matrix, np.ndarray]:
+        """P1 interpolation matrix (n x nnodes, vertex nodes only) at points ``xy`` and
+        the mask of points found."""
+        facet, bary = self.locate(xy)
+        found = facet >= 0
+        idx = np.nonzero(found)[0]
+        rows = np.repeat(idx, 3)
+        cols = self.facets[facet[idx], :3].ravel()
+        N = sp.csr_matrix((bary[idx].ravel(), (rows, cols)), shape=(facet.size, self.nnodes))
+        return N, found
 
     def mass(self) -> sp.csr_matrix:
         """Surface mass matrix ``∫ φ_i φ_j dA`` over the contact zone (exact for P2)."""
