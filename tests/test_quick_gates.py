@@ -1,21 +1,21 @@
-"""The CI accuracy gates (issue 5, item 6) and the regression baselines.
+r"""The CI accuracy gates (issue 5, item 6) and the regression baselines.
 
 Every bundled case runs in its quick variant through the half-space solver and the
-analytic references, and hertz, sliding_friction and dissimilar also through the FEM
-reference, exactly as ``contact-vv run`` does it; every tolerance of ``metrics.csv`` must
-hold (``contact-vv gate`` exits 0), the report must show every case, and the key numbers
-must not drift from ``tests/baselines/*.csv`` (relative drift 1e-6: the runs are
-deterministic, tests/test_determinism.py).  Update the baselines explicitly with
+analytic references, and hertz, cattaneo_mindlin, sliding_friction, pin_on_disk and
+dissimilar also through the FEM reference, exactly as ``contact-vv run`` does it; every
+tolerance of ``metrics.csv`` must hold (``contact-vv gate`` exits 0), the report must
+show every case, and the key numbers must not drift from ``tests/baselines/*.csv``
+(relative drift 1e-6: the runs are deterministic, tests/test_determinism.py).  Update
+the baselines explicitly with
 
     contact-vv run --all --quick --solver ic,analytic --out results
-    contact-vv run hertz sliding_friction dissimilar --quick --out results
+    contact-vv run hertz cattaneo_mindlin sliding_friction pin_on_disk dissimilar \
+        --quick --out results
     contact-vv gate --out results --update-baseline tests/baselines
 
-Not here: the FEM on cattaneo_mindlin, pin_on_disk and pin_on_disk_orthotropic (quick
-runs ~7 min of the FEM; their IC-FEM comparisons do not all pass yet, see the issue notes:
-the FEM's h = a0/8 mesh does not resolve the Q/muP = 0.25 slip annulus, and the 8 mm
-quick wear steps leave a pressure step at the worn edge that the max norms and the
-sigma_VM maximum resolve differently in the two solvers).  FEM fretting is not modelled.
+Not here: the FEM on pin_on_disk_orthotropic (its quick run alone takes 7 min; it passes
+the gate in ``contact-vv run --all --quick``, the issue notes have its numbers).  FEM
+fretting is not modelled.
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ from reports import layout
 from reports.cli import main
 
 BASELINES = Path(__file__).resolve().parent / "baselines"
-WITH_FEM = ("hertz", "sliding_friction", "dissimilar")
+WITH_FEM = ("hertz", "cattaneo_mindlin", "sliding_friction", "pin_on_disk", "dissimilar")
 
 
 @pytest.fixture(scope="module")
