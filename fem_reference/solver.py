@@ -189,7 +189,7 @@ class _Run:
         # tangential tractions: limited L2 projection on P1 (_recover_p1)
         self.F1, M1, self.E1 = surf.p1_projection()
         self.M1 = spla.splu(M1.tocsc())
-        self.Nprobe1, _ = surf.p1_interpolation(mapped)
+        self.Nprobe1, _ = surf.interpolation(mapped, p1=True)
         self.locator = PointLocator(m.space)
         self.D = np.zeros(2)
         self.u, self.delta = self._hertz_start()

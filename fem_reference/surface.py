@@ -109,17 +109,19 @@ class ContactSurface:
         bary = lam[np.arange(n), first]
         return facet, bary
 
-    def interpolation(self, xy: np.ndarray) -> tuple[sp.csr_matrix, np.ndarray]:
+    def interpolation(self, xy: np.ndarray, *, p1: bool = False
+                      ) -> tuple[sp.csr_matrix, np.ndarray]:
         """Interpolation matrix (n x nnodes) at points ``xy`` and the mask of points found.
 
-        Rows of points outside the contact zone are empty.
+        P2 on each facet, or with ``p1`` linear in the facet's vertex values.  Rows of
+        points outside the contact zone are empty.
         """
         facet, bary = self.locate(xy)
         found = facet >= 0
         idx = np.nonzero(found)[0]
-        phi = p2_triangle_values(bary[idx])
-        rows = np.repeat(idx, 6)
-        cols = self.facets[facet[idx]].ravel()
+        phi = bary[idx] if p1 else p2_triangle_values(bary[idx])
+        rows = np.repeat(idx, phi.shape[1])
+        cols = self.facets[facet[idx], :phi.shape[1]].ravel()
         N = sp.csr_matrix((phi.ravel(), (rows, cols)), shape=(facet.size, self.nnodes))
         return N, found
 
@@ -175,17 +177,6 @@ class ContactSurface:
         E = sp.diags(np.where(count > 0, 1.0 / np.maximum(count, 1.0), 0.0)) @ E
         E = (E + sp.diags(is_vert.astype(float))).tocsr()
         return F, M, E
-
-    def p1_interpolation(self, xy: np.ndarray) -> tuple[sp.csr_matrix, np.ndarray]:
-        """P1 interpolation matrix (n x nnodes, vertex nodes only) at points ``xy`` and
-        the mask of points found."""
-        facet, bary = self.locate(xy)
-        found = facet >= 0
-        idx = np.nonzero(found)[0]
-        rows = np.repeat(idx, 3)
-        cols = self.facets[facet[idx], :3].ravel()
-        N = sp.csr_matrix((bary[idx].ravel(), (rows, cols)), shape=(facet.size, self.nnodes))
-        return N, found
 
     def mass(self) -> sp.csr_matrix:
         """Surface mass matrix ``∫ φ_i φ_j dA`` over the contact zone (exact for P2)."""

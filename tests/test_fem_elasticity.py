@@ -160,7 +160,7 @@ def test_p1_projection_of_tractions():
     nodal = E @ solve(F @ lin)
     assert np.allclose(nodal, 2.0 - 0.7 * surf.xy[:, 0] + 1.3 * surf.xy[:, 1], atol=1e-11)
     pts = np.random.default_rng(3).uniform(0.0, 0.9, size=(40, 2))
-    N1, found = surf.p1_interpolation(pts)
+    N1, found = surf.interpolation(pts, p1=True)
     assert found.all()
     assert np.allclose(N1 @ solve(F @ lin), 2.0 - 0.7 * pts[:, 0] + 1.3 * pts[:, 1],
                        atol=1e-11)
