@@ -158,14 +158,12 @@ class ContactSurface:
         """
         nf, nq = self.facets.shape[0], self.quad_lam.shape[0]
         vert = self.facets[:, :3]
-        lam = np.tile(self.quad_lam, (nf, 1))  # (nf nq, 3)
-        rows = np.repeat(vert, nq, axis=0)  # (nf nq, 3) vertex nodes
-        cols = np.repeat(np.arange(nf * nq)[:, None], 3, axis=1)
-        F = sp.csr_matrix(((self.quad_w[:, None] * lam).ravel(), (rows.ravel(), cols.ravel())),
-                          shape=(self.nnodes, nf * nq))
-        Nv = sp.csr_matrix((lam.ravel(), (cols.ravel(), rows.ravel())),
-                           shape=(nf * nq, self.nnodes))
-        M = (Nv.T @ sp.diags(self.quad_w) @ Nv).tocsr()
+        rows = np.repeat(np.arange(nf * nq), 3)
+        cols = np.repeat(vert, nq, axis=0).ravel()  # the facet's vertex nodes per point
+        Nv = sp.csr_matrix((np.tile(self.quad_lam, (nf, 1)).ravel(), (rows, cols)),
+                           shape=(nf * nq, self.nnodes))  # P1 values at the points
+        F = (Nv.T @ sp.diags(self.quad_w)).tocsr()
+        M = (F @ Nv).tocsr()
         is_vert = np.zeros(self.nnodes, dtype=bool)
         is_vert[vert.ravel()] = True
         M = (M + sp.diags((~is_vert).astype(float))).tocsr()

@@ -132,10 +132,10 @@ def field_errors(fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
     of a few cells).  The norms of ``ref`` (default ``fb``, over all of ``mask``)
     normalise the errors: a traction component is measured against the whole
     tangential traction |p_t| of the reference, so that a component that is nearly zero
-    in both solvers does not produce a large relative
-    error.  Points where a field is NaN are ignored; with no point left, or both fields
-    zero (below 1e-12 ``scale``), there is nothing to compare.  A reference that is zero
-    while the other field is not is normalised by ``scale``.
+    in both solvers does not produce a large relative error.  Points where a field is
+    NaN are ignored; with no point left, or both fields zero (below 1e-12 ``scale``),
+    there is nothing to compare.  A reference that is zero while the other field is not
+    is normalised by ``scale``.
     """
     ref = fb if ref is None else ref
     ok = np.isfinite(fa) & np.isfinite(fb) & np.isfinite(ref)
