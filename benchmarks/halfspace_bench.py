@@ -24,7 +24,7 @@ import json, resource, sys, time
 import numpy as np
 from cases import load_case
 from cases.model import Friction
-from halfspace.solver import contact_solver, profile, stress_evaluator
+from halfspace.problem import contact_solver, profile, stress_evaluator
 from halfspace.stresses import StressEvaluator
 kind, n = sys.argv[1], int(sys.argv[2])
 case = load_case("hertz", overrides={"grid.nx": n, "grid.ny": n})[0]

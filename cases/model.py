@@ -4,7 +4,7 @@ A case is read from a TOML file (see ``cases/README.md`` for every key) by
 :func:`cases.loader.load_case`.  Solvers receive a :class:`Case` and nothing else.
 Units: mm, N, MPa; angles in degrees.
 
-Conventions shared by both solvers (``shared/paper/formulation.md``):
+Conventions shared by both solvers (``docs/formulation.md``):
 
 - body ``a`` is the upper body (the indenter, sphere, pin), body ``b`` the lower one
   (the plane, disk); global z points into body ``a``;
@@ -81,6 +81,12 @@ class Grid:
         import numpy as np
 
         return (np.arange(self.ny) + 0.5) * self.dy - 0.5 * self.Ly
+
+    def nearest_cell(self, x0: float, y0: float) -> tuple[int, int]:
+        """(i, j) of the cell centre nearest to the point (x0, y0)."""
+        import numpy as np
+
+        return int(np.argmin(np.abs(self.x - x0))), int(np.argmin(np.abs(self.y - y0)))
 
 
 @dataclass(frozen=True)
@@ -211,6 +217,41 @@ class Case:
         if self.load.P is None:
             raise CaseError("hertz_a0 needs load.P")
         return (3.0 * self.load.P * self.R / (4.0 * self.E_star)) ** (1.0 / 3.0)
+
+    @property
+    def hertz_scales(self) -> tuple[float, float]:
+        """(a0 [mm], p0 [MPa]) of the Hertz contact of the sphere at the case's normal
+        load: the length and stress scales of tables and plots (x/a0, σ/p0).
+
+        Load control: a0 = (3PR / 4E*)^(1/3), p0 = 3P / (2π a0²).  Displacement control
+        (approach δ): a0 = √(Rδ), p0 = 2 E* a0 / (π R) — the same Hertz contact.
+        """
+        if self.load.P is not None:
+            a0 = self.hertz_a0
+            return a0, 3.0 * self.load.P / (2.0 * math.pi * a0**2)
+        a0 = math.sqrt(self.R * float(self.load.approach))
+        return a0, 2.0 * self.E_star * a0 / (math.pi * self.R)
+
+    @property
+    def sliding_wear_coefficient(self) -> float:
+        """i_w of the gap for sliding along ``load.slide_angle``: the sum over both bodies
+        of ‖d‖_i = √((i1 d_e1)² + (i2 d_e2)²) (Eq. 19-21) for the unit direction d."""
+        theta = math.radians(self.load.slide_angle - self.friction.beta)
+        c, s = math.cos(theta), math.sin(theta)
+        return sum(math.hypot(b.i1 * c, b.i2 * s) for b in (self.a, self.b))
+
+    @property
+    def expected_radius(self) -> float:
+        """The largest contact radius the case should reach [mm], an a-priori estimate:
+        the Hertz a0, and for sliding wear under load control Argatov's worn-pin radius
+        a = (a0⁴ + 4 i_w P s R / π)^(1/4) at the final distance (docs/cases.md, case 4),
+        with i_w from :attr:`sliding_wear_coefficient`."""
+        a0, _ = self.hertz_scales
+        if self.sliding_wear is not None and self.load.P is not None:
+            s = self.sliding_wear.distance
+            i_w = self.sliding_wear_coefficient
+            return (a0**4 + 4.0 * i_w * self.load.P * s * self.R / math.pi) ** 0.25
+        return a0
 
     def with_changes(self, **kw) -> Case:
         return replace(self, **kw)

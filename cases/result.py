@@ -1,7 +1,7 @@
 """The common result container shared by every solver, and its atomic on-disk form.
 
 A solver returns a :class:`RunResult`: per output step a :class:`StepResult` with the
-scalar summary (the ``summary.csv`` columns of DESIGN.md), surface fields on a regular
+scalar summary (the ``summary.csv`` columns, :data:`SUMMARY_COLUMNS`), surface fields on a regular
 grid, and subsurface planes (xz and yz through the load centre).
 
 Surface fields, arrays of shape (nx, ny) indexed [i, j] = (x[i], y[j]):
@@ -16,9 +16,10 @@ Plane fields, arrays of shape (ns, nz) for coordinates (s, z), s = x on 'xz' and
 from __future__ import annotations
 
 import json
+import math
 import os
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -31,7 +32,7 @@ SUMMARY_COLUMNS = [
     "vm_max_z", "stick_area", "iterations", "converged", "wall_s",
 ]
 STRESS_COMPONENTS = ("sxx", "syy", "szz", "sxy", "sxz", "syz")
-OPEN, STICK, SLIP = 0, 1, 2
+OPEN, STICK, SLIP = 0, 1, 2  # the surface field ``state`` of every solver
 
 
 def von_mises(sxx, syy, szz, sxy, sxz, syz):
@@ -57,6 +58,23 @@ class Plane:
         return float(vm[i, k]), float(self.s[i]), float(self.z[k])
 
 
+def vm_max_location(planes: Mapping[str, Plane], x0: float, y0: float
+                    ) -> tuple[float, float, float, float]:
+    """(max σ_VM, x, y, z) over the planes: ``xz`` lies at y = ``y0``, ``yz`` at x = ``x0``
+    (the coordinates where the solver sampled them).  On a tie the first plane wins;
+    planes without a finite σ_VM field (what a closed form does not cover) are skipped;
+    NaNs when no plane has one."""
+    best = (math.nan,) * 4
+    for name, plane in planes.items():
+        vm = plane.fields.get("vm")
+        if vm is None or vm.size == 0 or not np.isfinite(vm).all():
+            continue
+        value, s_at, z_at = plane.vm_max()
+        if not math.isfinite(best[0]) or value > best[0]:
+            best = (value, s_at, y0, z_at) if name == "xz" else (value, x0, s_at, z_at)
+    return best
+
+
 @dataclass
 class StepResult:
     scalars: dict[str, float]
@@ -64,6 +82,13 @@ class StepResult:
     y: np.ndarray
     surface: dict[str, np.ndarray]
     planes: dict[str, Plane] = field(default_factory=dict)
+
+    def number(self, index: int) -> int:
+        """The output step number: the ``step`` scalar, else ``index`` (its position)."""
+        value = self.scalars.get("step")
+        if value is None or not math.isfinite(float(value)):
+            return index
+        return int(value)
 
 
 @dataclass
@@ -76,20 +101,45 @@ class RunResult:
     tables: dict[str, dict[str, np.ndarray]] = field(default_factory=dict)
 
     def summary_rows(self) -> list[dict]:
+        """One ``summary.csv`` row per output step: the contract columns
+        (:data:`SUMMARY_COLUMNS`, NaN where a solver says nothing), then every further
+        scalar of the step; ``step`` is :meth:`StepResult.number`."""
         rows = []
-        for step in self.steps:
-            row = {c: step.scalars.get(c, np.nan) for c in SUMMARY_COLUMNS}
-            row.update(case=self.case, solver=self.solver, param=self.param)
+        for k, step in enumerate(self.steps):
+            row = {c: step.scalars.get(c, math.nan) for c in SUMMARY_COLUMNS}
+            row.update({key: v for key, v in step.scalars.items() if key not in row})
+            row.update(case=self.case, solver=self.solver, param=self.param,
+                       step=step.number(k))
             rows.append(row)
         return rows
+
+
+@dataclass(frozen=True)
+class Cost:
+    """What a solver expects a case to take before it starts (its ``estimate(case)``):
+    peak memory [bytes] and wall time [s] (order of magnitude), each with the case keys
+    that drive it, so a refusal can name what to change."""
+
+    memory: float
+    seconds: float
+    memory_keys: tuple[str, ...] = ()
+    time_keys: tuple[str, ...] = ()
 
 
 # ---------------------------------------------------------------- atomic files
 
 
+def _umask() -> int:
+    """The process's umask (read by setting and restoring it)."""
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 @contextmanager
 def atomic_path(path: str | Path) -> Iterator[Path]:
-    """Yield a temporary path beside ``path``; rename it onto ``path`` only on success."""
+    """Yield a temporary path beside ``path``; on success give it the mode a plain
+    ``open`` would (0666 less the umask), flush it to disk and rename it onto ``path``."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".part", dir=path.parent)
@@ -97,6 +147,9 @@ def atomic_path(path: str | Path) -> Iterator[Path]:
     tmp = Path(tmp)
     try:
         yield tmp
+        os.chmod(tmp, 0o666 & ~_umask())
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
         os.replace(tmp, path)
     finally:
         if tmp.exists():

@@ -4,8 +4,9 @@ Shares nothing with ``halfspace`` but the case model and the result container.
 
 Public API:
 
-- :func:`solve` ``(case, progress=False, *, vtu=True, log=None) -> RunResult`` with
-  solver name ``"fem"`` (see :mod:`fem_reference.solver` for the fields and load path);
+- :func:`solve` ``(case, *, progress=False, on_output=None, vtu=True, log=None)`` with
+  solver name ``"fem"`` (see :mod:`fem_reference.solver`: the load path is in
+  :mod:`fem_reference.loading`, the fields in :mod:`fem_reference.output`);
 - :func:`write_vtu` ``(path, mesh)`` writes one of the ``RunResult.meta["vtu"]``
   ``(step, meshio.Mesh)`` meshes for ParaView; :func:`read_vtu` reads it back;
 - :class:`FemUnsupported` (a ``CaseError``: the case needs a feature the model does not
@@ -14,19 +15,34 @@ Public API:
   :class:`ContactConvergenceError` (contact iteration failed; message has the residual).
 """
 
+from collections.abc import Callable
+
 from cases.model import Case
+from cases.result import RunResult, StepResult
 
 from .contact import ContactConvergenceError
 from .mesh import MeshError
 from .model import FemError, FemUnsupported
-from .solver import solve
+from .solver import solve as _solve
 from .vtu import read_vtu, write_vtu
 
 
-def supports(case: Case) -> bool:
-    """Whether the FE model implements the case: P2 elements, static and sliding-wear
-    cases (fretting is not implemented; the runner skips it with a note)."""
-    return case.kind in ("static", "sliding_wear") and case.fem.order == 2
+def solve(case: Case, *, progress: bool = False,
+          on_output: Callable[[StepResult], None] | None = None, vtu: bool = True,
+          log=None) -> RunResult:
+    """Run the FEM reference on ``case`` (:func:`fem_reference.solver.solve`);
+    ``on_output`` receives each output step as soon as it is computed."""
+    return _solve(case, progress, vtu=vtu, log=log, on_output=on_output)
+
+
+def supports(case: Case) -> str | None:
+    """None when the FE model implements the case (P2 elements, static and sliding-wear
+    cases), else why not (fretting is not implemented)."""
+    if case.kind not in ("static", "sliding_wear"):
+        return f"kind {case.kind!r} is not implemented by the FEM reference"
+    if case.fem.order != 2:
+        return f"fem.order = {case.fem.order}: the FEM reference implements P2 only"
+    return None
 
 
 __all__ = [

@@ -245,45 +245,82 @@ def newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u
 
 def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray,
             *, cw: float, tol: float, max_iter: int) -> Solution:
-    m = K.shape[0]
+    eqs = _Equations(K=K, C=C, law=law, pts=pts, ctrl=ctrl, cw=cw, extra=_unknowns(ctrl))
     u = u0.copy()
     delta = float(ctrl.delta)
     D = np.array(ctrl.D, dtype=float)
-    extra = []  # ('delta', None) or ('D', component)
+    res_hist = []
+    ev, f, Ru, Re = eqs.residual(u, delta, D)
+    res = eqs.merit(f, Ru, Re)
+    for it in range(1, max_iter + 1):
+        res_hist.append(res)
+        dx = eqs.newton_step(ev, Ru, Re, it, res)
+        u, delta, D, (ev, f, Ru, Re), res = eqs.line_search(u, delta, D, dx, res, tol)
+        if res < tol:
+            return Solution(u=u, delta=delta, D=D, ev=ev, iterations=it, residual=res)
+    raise ContactConvergenceError(
+        f"contact Newton did not converge in {max_iter} iterations: relative residual "
+        f"{res_hist[-1]:.3e} (tolerance {tol:.1e}); last residuals "
+        + ", ".join(f"{r:.2e}" for r in res_hist[-5:])
+    )
+
+
+def _unknowns(ctrl: Control) -> tuple[tuple[str, int | None], ...]:
+    """The unknowns besides u: ``("delta", None)`` under load control on P, ``("D", c)``
+    for each tangential load component c."""
+    extra = []
     if ctrl.P is not None:
         extra.append(("delta", None))
     for c in (0, 1):
         if ctrl.Q[c] is not None:
             extra.append(("D", c))
-    ne = len(extra)
-    w, G = pts.w, pts.G
+    return tuple(extra)
 
-    def residual(u, delta, D):
-        ev = evaluate(law, pts, u, delta, D, cw)
+
+@dataclass(frozen=True)
+class _Equations:
+    """The condensed contact equations of one solve: ``K u − Gᵀ W t(u) = 0`` bordered by
+    the control equations ``sym Σ w p_n = P`` and ``sym Σ w p_t,c = Q_c`` for the
+    unknowns ``extra`` (:func:`_unknowns`)."""
+
+    K: np.ndarray
+    C: np.ndarray
+    law: Law
+    pts: Points
+    ctrl: Control
+    cw: float
+    extra: tuple[tuple[str, int | None], ...]
+
+    def residual(self, u: np.ndarray, delta: float, D: np.ndarray
+                 ) -> tuple[Evaluation, np.ndarray, np.ndarray, np.ndarray]:
+        """(evaluation, nodal forces f, residual of the u equations, of the controls)."""
+        w, G, ctrl = self.pts.w, self.pts.G, self.ctrl
+        ev = evaluate(self.law, self.pts, u, delta, D, self.cw)
         f = G.T @ np.concatenate([w * ev.t[:, 0], w * ev.t[:, 1], w * ev.pn])
-        Ru = K @ u - f
+        Ru = self.K @ u - f
         Re = []
-        for kind, c in extra:
+        for kind, c in self.extra:
             if kind == "delta":
                 Re.append(np.sum(w * ev.pn) - ctrl.P / ctrl.sym)
             else:
                 Re.append(np.sum(w * ev.t[:, c]) - ctrl.Q[c] / ctrl.sym)
         return ev, f, Ru, np.asarray(Re, dtype=float)
 
-    # residual scales: the nodal forces of the loads
-    load_scale = max(abs(ctrl.P or 0.0), *(abs(q or 0.0) for q in ctrl.Q)) / ctrl.sym
-
-    def merit(f, Ru, Re):
+    def merit(self, f: np.ndarray, Ru: np.ndarray, Re: np.ndarray) -> float:
+        """Relative residual: ‖Ru‖ over the nodal forces ‖f‖, the control residuals over
+        the nodal forces of the loads (‖f‖ when there are no loads)."""
+        ctrl = self.ctrl
+        load_scale = max(abs(ctrl.P or 0.0), *(abs(q or 0.0) for q in ctrl.Q)) / ctrl.sym
         fs = max(np.linalg.norm(f), 1e-300)
         ls = load_scale if load_scale > 0 else fs
         return max(np.linalg.norm(Ru) / fs, *(np.abs(Re) / ls), 0.0)
 
-    res_hist = []
-    ev, f, Ru, Re = residual(u, delta, D)
-    res = merit(f, Ru, Re)
-    for it in range(1, max_iter + 1):
-        res_hist.append(res)
-        # Jacobian: J_uu = K + B with B = −Gᵀ W T G, bordered by the control equations
+    def newton_step(self, ev: Evaluation, Ru: np.ndarray, Re: np.ndarray, it: int,
+                    res: float) -> np.ndarray:
+        """The Newton increment of (u, extra unknowns): the bordered Jacobian
+        ``[[K + B, U], [V, W]]`` with ``B = −Gᵀ W T G`` solved by block elimination."""
+        w, G, extra = self.pts.w, self.pts.G, self.extra
+        m, ne = self.K.shape[0], len(extra)
         B = -(G.T @ _weighted_blocks(w, ev.T) @ G)
         dcols = [ev.Tdelta if kind == "delta" else ev.TD[:, :, c] for kind, c in extra]
         U = np.empty((m, ne))
@@ -297,36 +334,33 @@ def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, 
             for j, d in enumerate(dcols):
                 W[i, j] = np.sum(w * d[:, r])
         try:
-            X = _solve_stiffened(C, B, np.column_stack([-Ru, U]))
+            X = _solve_stiffened(self.C, B, np.column_stack([-Ru, U]))
             xu, Xu = X[:, 0], X[:, 1:]
             dx_e = la.solve(W - V @ Xu, -Re - V @ xu) if ne else np.zeros(0)
         except (la.LinAlgError, ValueError) as exc:
             raise ContactConvergenceError(
                 f"singular contact Jacobian at iteration {it} (residual {res:.3e}): {exc}"
             ) from None
-        dx = np.concatenate([xu - Xu @ dx_e, dx_e])
-        # backtracking on the residual norm (the laws are only piecewise smooth)
+        return np.concatenate([xu - Xu @ dx_e, dx_e])
+
+    def line_search(self, u: np.ndarray, delta: float, D: np.ndarray, dx: np.ndarray,
+                    res: float, tol: float) -> tuple:
+        """Backtracking on the residual norm (the laws are only piecewise smooth): halve
+        the step until the merit decreases (at most 12 times).  Returns the new
+        ``(u, delta, D, residual(...), merit)``."""
+        m = self.K.shape[0]
         step = 1.0
         for _ in range(12):
             u_t = u + step * dx[:m]
             delta_t, D_t = delta, D.copy()
-            for j, (kind, c) in enumerate(extra):
+            for j, (kind, c) in enumerate(self.extra):
                 if kind == "delta":
                     delta_t += step * dx[m + j]
                 else:
                     D_t[c] += step * dx[m + j]
-            trial = residual(u_t, delta_t, D_t)
-            res_t = merit(*trial[1:])
+            trial = self.residual(u_t, delta_t, D_t)
+            res_t = self.merit(*trial[1:])
             if res_t < res or res_t < tol:
                 break
             step *= 0.5
-        u, delta, D = u_t, delta_t, D_t
-        ev, f, Ru, Re = trial
-        res = res_t
-        if res < tol:
-            return Solution(u=u, delta=delta, D=D, ev=ev, iterations=it, residual=res)
-    raise ContactConvergenceError(
-        f"contact Newton did not converge in {max_iter} iterations: relative residual "
-        f"{res_hist[-1]:.3e} (tolerance {tol:.1e}); last residuals "
-        + ", ".join(f"{r:.2e}" for r in res_hist[-5:])
-    )
+        return u_t, delta_t, D_t, trial, res_t

@@ -72,7 +72,7 @@ def wear_compliances(case: Case, slip: np.ndarray) -> tuple[float, float]:
 def expected_radius(case: Case, a_ref: float) -> float:
     """Largest contact radius expected during the run, in units of ``a_ref``.
 
-    Hertz for static cases; Argatov's worn-pin radius (cases.md §4)
+    Hertz for static cases; Argatov's worn-pin radius (docs/cases.md, case 4)
     a⁴ = a0⁴ + 4 i_w P s R / π at the end of a sliding-wear run.
     """
     a = a_ref

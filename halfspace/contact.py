@@ -15,7 +15,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from cases.model import Friction, Grid
+from cases.model import CaseError, Friction, Grid
+from cases.result import OPEN, SLIP, STICK
 
 from .friction import mu_norm
 from .materials import Materials
@@ -30,7 +31,6 @@ from .normal import (
 from .operator import SurfaceOperator
 from .tangential import TangentialSolution, solve_tangential, tangential_residual
 
-OPEN, STICK, SLIP = 0, 1, 2
 SLIP_RTOL = 1e-6  # a contact cell slips when its traction is on the friction limit
 
 
@@ -43,8 +43,9 @@ def _tangential_bound(op: SurfaceOperator) -> float:
                   + np.sqrt(half**2 + s["xy"].real ** 2)).max())
 
 
-class ContactAtEdge(RuntimeError):
-    """The contact area reaches the edge of the potential contact grid."""
+class ContactAtEdge(RuntimeError, CaseError):
+    """The contact area reaches the edge of the potential contact grid: the case's grid
+    is too small (also a CaseError: the user enlarges grid.Lx/grid.Ly)."""
 
 
 @dataclass
@@ -211,25 +212,34 @@ class ContactSolver:
         makes the wear of the step implicit: the gap gains ``wear_rate * p_n`` (Eq. 23,
         29 with a known slip norm); the returned gap includes it.  ``guess`` only starts
         the iterations (default: ``prev``'s tractions); the slip history is ``prev``'s."""
-        shape = (self.grid.nx, self.grid.ny)
-        prev = prev or ContactState.initial(shape)
+        prev = prev or ContactState.initial((self.grid.nx, self.grid.ny))
         if shift is None:
             shift = (prev.shift_x, prev.shift_y)
         shift = np.asarray(shift, float)
+        nsol, tsol, shift, iters = self._tractions(h, P, approach, Q, shift, prev,
+                                                   guess or prev, wear_rate)
+        return self._assemble(h, approach, nsol, tsol, shift, prev, wear_rate, iters,
+                              check_edge)
+
+    def _tractions(self, h, P, approach, Q, shift, prev: ContactState, start: ContactState,
+                   wear_rate) -> tuple[NormalSolution, TangentialSolution, np.ndarray, int]:
+        """The normal and tangential tractions of a step: one normal and one tangential
+        solve when they decouple (K = 0 or no friction), else alternating solves until
+        the normal problem is consistent with the tangential tractions (Eq. 6, K != 0).
+        Returns (normal solution, tangential solution, rigid shift, iterations)."""
+        shape = (self.grid.nx, self.grid.ny)
         frictional = self.friction.mu1 > 0
         coupled = self.op.coupled and frictional
-        start = guess or prev
         p_x, p_y = start.p_x, start.p_y
         p_n0 = start.p_n if np.any(start.p_n > 0) else None
         g_prev = (prev.g_x, prev.g_y)
-        iters, tsol, zero = 0, None, np.zeros(shape)
+        iters, zero = 0, np.zeros(shape)
         for _ in range(200 if coupled else 1):
             h_n = h + self.op.normal_from_tangential(p_x, p_y) if coupled else h
             nsol = self._normal(h_n, P, approach, p_n0, wear_rate)
             iters += nsol.iterations
             if not frictional:
-                tsol = TangentialSolution(zero, zero.copy(), 0, 0.0)
-                break
+                return nsol, TangentialSolution(zero, zero.copy(), 0, 0.0), shift, iters
             u_tn = self.op.tangential_from_normal(nsol.p_n)
             if Q is not None:
                 tsol, shift, it_t = self._tangential_load(Q, shift, u_tn, g_prev, nsol.p_n,
@@ -239,7 +249,7 @@ class ContactSolver:
                 it_t = tsol.iterations
             iters += it_t
             if not coupled:
-                break
+                return nsol, tsol, shift, iters
             change = np.hypot(np.linalg.norm(tsol.p_x - p_x), np.linalg.norm(tsol.p_y - p_y))
             p_x, p_y, p_n0 = tsol.p_x, tsol.p_y, nsol.p_n
             # converged when the normal problem is consistent with the new tractions
@@ -250,10 +260,17 @@ class ContactSolver:
             if (normal_residual(nsol.p_n, g_chk, self.c_n,
                                 roundoff_floor(self.c_n, h_chk, approach)) < self.tol
                     and change <= self.tol * np.linalg.norm(nsol.p_n)):
-                break
-        else:
-            raise ContactNotConverged("normal-tangential coupling (K != 0) did not converge "
-                                      f"in 200 passes: traction change {change:.3e}")
+                return nsol, tsol, shift, iters
+        raise ContactNotConverged("normal-tangential coupling (K != 0) did not converge "
+                                  f"in 200 passes: traction change {change:.3e}")
+
+    def _assemble(self, h, approach, nsol: NormalSolution, tsol: TangentialSolution,
+                  shift: np.ndarray, prev: ContactState, wear_rate, iters: int,
+                  check_edge: bool) -> StepSolution:
+        """The step from its tractions: gap (Eq. 1), slip (Eq. 2), stick/slip/open state,
+        the residuals of both problems re-checked once on the assembled step."""
+        frictional = self.friction.mu1 > 0
+        g_prev = (prev.g_x, prev.g_y)
         p_n = nsol.p_n
         u_x, u_y, u_z = self.op(tsol.p_x, tsol.p_y, p_n)
         gap = h + u_z - nsol.approach

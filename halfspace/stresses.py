@@ -99,11 +99,14 @@ class StressEvaluator:
         s = self.grid.x if along == "x" else self.grid.y
         return Plane(s=s.copy(), z=self.z.copy(), fields=_finish(fields, flip))
 
+    def plane_centre(self, x0: float = 0.0, y0: float = 0.0) -> tuple[float, float]:
+        """(x, y) of the cell centre nearest to (x0, y0), where :meth:`planes` cross."""
+        i0, j0 = self.grid.nearest_cell(x0, y0)
+        return float(self.grid.x[i0]), float(self.grid.y[j0])
+
     def planes(self, p_x, p_y, p_n, x0: float = 0.0, y0: float = 0.0) -> dict[str, Plane]:
         """The xz and yz planes through the cell centre nearest to (x0, y0)."""
-        g = self.grid
-        j0 = int(np.argmin(np.abs(g.y - y0)))
-        i0 = int(np.argmin(np.abs(g.x - x0)))
+        i0, j0 = self.grid.nearest_cell(x0, y0)
         return {"xz": self.plane(p_x, p_y, p_n, "x", j0),
                 "yz": self.plane(p_x, p_y, p_n, "y", i0)}
 

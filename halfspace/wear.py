@@ -30,14 +30,8 @@ from cases.result import RunResult, StepResult
 
 from .contact import STICK, ContactNotConverged, ContactState
 from .friction import wear_norm
-from .solver import (
-    SOLVER_NAME,
-    contact_solver,
-    profile,
-    slide_direction,
-    step_result,
-    stress_evaluator,
-)
+from .output import SOLVER_NAME, step_result
+from .problem import contact_solver, profile, slide_direction, stress_evaluator
 
 OutputCallback = Callable[[StepResult], None]
 

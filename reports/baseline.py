@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from .errors import UserError
-from .results import Scan
+from .results import DamagedResult, Malformed, Scan, read_csv, read_result
 
 INDEX = ["case", "solver", "param", "step"]
 KEYS = ["P", "p_max", "a_x", "a_y", "contact_area", "stick_area", "w_max", "wear_volume",
@@ -38,7 +38,7 @@ def key_numbers(results: Scan) -> dict[str, pd.DataFrame]:
 
 def write(results: Scan, folder: Path) -> list[Path]:
     """Write (replace) the baselines of every complete case of ``results``."""
-    from .runner import write_csv
+    from .write import write_csv
 
     folder = Path(folder)
     folder.mkdir(parents=True, exist_ok=True)
@@ -50,6 +50,35 @@ def write(results: Scan, folder: Path) -> list[Path]:
     return paths
 
 
+def read_baseline(path: Path) -> pd.DataFrame:
+    """One baseline CSV: the :data:`INDEX` columns, numbers in the :data:`KEYS` columns
+    it has, one row per (case, solver, param, step)."""
+    frame = read_csv(path, required=INDEX, text=("case", "solver", "param"), numeric=KEYS,
+                     integer=["step"])
+    dup = frame.duplicated(INDEX)
+    if dup.any():
+        r = frame[dup].iloc[0]
+        raise Malformed(f"two rows for solver {r['solver']} [{r['param']}] step {r['step']}")
+    return frame
+
+
+def read(folder: Path) -> dict[str, pd.DataFrame]:
+    """The baselines in ``folder`` by case; :class:`UserError` if it is not a baseline
+    directory (missing, no ``<case>.csv``, or a file that cannot be read as a baseline)."""
+    folder = Path(folder)
+    if not folder.is_dir():
+        raise UserError(f"baseline directory {folder} does not exist "
+                        "(create it with `contact-vv gate --update-baseline DIR`)")
+    paths = sorted(folder.glob("*.csv"))
+    if not paths:
+        raise UserError(f"baseline directory {folder} holds no <case>.csv baselines "
+                        "(create them with `contact-vv gate --update-baseline DIR`)")
+    try:
+        return {path.stem: read_result(path, read_baseline) for path in paths}
+    except DamagedResult as exc:
+        raise UserError(f"baseline {exc}") from None
+
+
 def drift(results: Scan, folder: Path, tol: float = DEFAULT_DRIFT) -> list[str]:
     """One line per key number that drifted beyond ``tol`` and per missing result row.
 
@@ -58,15 +87,11 @@ def drift(results: Scan, folder: Path, tol: float = DEFAULT_DRIFT) -> list[str]:
     scale of the column).  NaN matches NaN only.
     """
     folder = Path(folder)
-    if not folder.is_dir():
-        raise UserError(f"baseline directory {folder} does not exist "
-                        "(create it with `contact-vv gate --update-baseline DIR`)")
+    baselines = read(folder)
     current = key_numbers(results)
     lines = []
-    for path in sorted(folder.glob("*.csv")):
-        base = pd.read_csv(path, dtype={"param": object})
-        base["param"] = base["param"].fillna("").astype(str)
-        name = path.stem
+    for name, base in baselines.items():
+        path = folder / f"{name}.csv"
         if name not in current:
             lines.append(f"DRIFT {name}: in the baseline {path} but not in the results")
             continue

@@ -9,6 +9,7 @@ unknown case or solver, bad flag, missing results directory), printed as
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 import time
 from collections.abc import Sequence
@@ -59,6 +60,8 @@ def _overrides(items: Sequence[str] | None) -> dict[str, Any]:
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description="Verification of the half-space contact solver "
                      "against FEM and analytical references.")
+    parser.add_argument("--debug", action="store_true",
+                        help="show the traceback of an unexpected error")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
 
@@ -75,6 +78,12 @@ def build_parser() -> argparse.ArgumentParser:
             p.add_argument("--set", action="append", metavar="KEY=VALUE", dest="overrides",
                            help="override a dotted case key, e.g. tolerances.p_max=0.02")
             p.add_argument("--no-progress", action="store_true", help="no progress bars")
+            p.add_argument("--max-memory", type=float, metavar="GiB",
+                           help="memory one solver run may take by its estimate (default: "
+                           "90 %% of the available memory)")
+            p.add_argument("--max-hours", type=float, default=48.0, metavar="H",
+                           help="wall time one solver run may take by its estimate "
+                           "(default: 48)")
 
     run = sub.add_parser("run", help="run cases through the solvers")
     run.add_argument("cases", nargs="*", metavar="CASE", help="bundled case name or TOML path")
@@ -152,8 +161,19 @@ def _report_runs(runs, out: Path) -> int:
     return 0
 
 
+def _limits(args: argparse.Namespace):
+    from .plan import Limits
+
+    for flag, value in (("--max-memory", args.max_memory), ("--max-hours", args.max_hours)):
+        if value is not None and not (math.isfinite(value) and value > 0):
+            raise UserError(f"{flag} must be a positive number")
+    return Limits(memory=None if args.max_memory is None else args.max_memory * 2**30,
+                  hours=args.max_hours)
+
+
 def cmd_run(args: argparse.Namespace) -> int:
-    from .runner import execute, plan_case, select_solvers
+    from .plan import plan_case, select_solvers
+    from .runner import execute
 
     names = list(args.cases)
     if args.all:
@@ -166,8 +186,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         raise UserError("run needs at least one CASE or --all")
     chosen, skipped = select_solvers(_solver_list(args.solver))
     overrides = _overrides(args.overrides)
-    plans = [plan_case(n, chosen, quick=args.quick, overrides=overrides, skipped=skipped)
-             for n in names]  # validate every case before running any
+    limits = _limits(args)
+    plans = [plan_case(n, chosen, quick=args.quick, overrides=overrides, skipped=skipped,
+                       limits=limits) for n in names]  # validate every case before running
     seen: dict[str, str] = {}
     for n, p in zip(names, plans, strict=True):
         if p.dir_name in seen:
@@ -180,15 +201,18 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from .runner import execute, select_solvers, serial_executor
+    from .plan import select_solvers
+    from .runner import execute
     from .sweep import DaskExecutor, parse_param, plan_sweep
+    from .units import serial_executor
 
     params = [parse_param(p) for p in args.param]
     if args.workers < 0:
         raise UserError("--workers must be >= 0")
     chosen, skipped = select_solvers(_solver_list(args.solver))
     plan = plan_sweep(args.case, params, chosen, quick=args.quick,
-                      overrides=_overrides(args.overrides), skipped=skipped)
+                      overrides=_overrides(args.overrides), skipped=skipped,
+                      limits=_limits(args))
     progress = False if args.no_progress else None
     t0 = time.perf_counter()
     if args.workers == 0 and not args.scheduler:
@@ -222,7 +246,8 @@ def _check_serial(plan, path: Path, wall: float) -> int:
     from cases.result import atomic_write_text
 
     from .layout import METRICS, SUMMARY
-    from .runner import execute, serial_executor
+    from .runner import execute
+    from .units import serial_executor
 
     with tempfile.TemporaryDirectory(prefix="contact-vv-serial-") as tmp:
         t0 = time.perf_counter()
@@ -245,7 +270,11 @@ def _check_serial(plan, path: Path, wall: float) -> int:
 def cmd_report(args: argparse.Namespace) -> int:
     from .html import write_report
 
-    path = write_report(args.out)
+    try:
+        path = write_report(args.out)
+    except RunFailed:  # written, showing incomplete or damaged cases: say where, exit 1
+        print(f"report: {Path(args.out) / 'index.html'}")
+        raise
     print(f"report: {path}")
     return 0
 
@@ -264,7 +293,11 @@ COMMANDS = {"list": cmd_list, "run": cmd_run, "report": cmd_report, "gate": cmd_
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point of the ``contact-vv`` console script; returns the exit status."""
+    """Entry point of the ``contact-vv`` console script; returns the exit status.
+
+    The one error boundary of the command line: every failure is one line
+    ``contact-vv: error: …`` and an exit status (module doc); an unexpected exception
+    shows its traceback only with ``--debug``."""
     try:
         args = build_parser().parse_args(argv)
     except SystemExit as exc:  # --help (0) or a bad flag (2)
@@ -284,6 +317,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{PROG}: interrupted; nothing incomplete is presented as complete",
               file=sys.stderr)
         return 130
+    except MemoryError:
+        print(f"{PROG}: error: out of memory (reduce the grid, stress.nz or the FEM mesh, "
+              "or raise --max-memory only if the machine has it)", file=sys.stderr)
+        return 1
+    except Exception as exc:  # a bug: say so in one line, the traceback on request
+        if args.debug:
+            raise
+        print(f"{PROG}: error: internal error: {type(exc).__name__}: {exc} (run with "
+              "--debug for the traceback)", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

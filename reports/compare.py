@@ -28,22 +28,13 @@ from scipy import ndimage
 from scipy.interpolate import RegularGridInterpolator
 
 from cases.model import Case
-from cases.result import RunResult, StepResult
+from cases.result import RunResult, StepResult, vm_max_location
 
 from . import tolerances as tol
-from .scales import hertz_scales
 
 METRICS_COLUMNS = ["quantity", "pair", "metric", "value", "tolerance", "passed"]
 EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key"]
 _TINY = 1e-12
-
-
-def step_number(step: StepResult, index: int) -> int:
-    """The output step number of a step (its ``step`` scalar, else its position)."""
-    value = step.scalars.get("step")
-    if value is None or not math.isfinite(float(value)):
-        return index
-    return int(value)
 
 
 def pairs(solvers: Sequence[str]) -> list[tuple[str, str]]:
@@ -172,23 +163,14 @@ def _scalar(step: StepResult, key: str) -> float:
 
 
 def _vm_location(step: StepResult) -> tuple[float, float, float, float]:
-    """(vm_max, x, y, z) from the scalars, else from the planes."""
+    """(vm_max, x, y, z) from the scalars, else from the planes (crossing at the ``x0``,
+    ``y0`` scalars, default 0)."""
     keys = ("vm_max", "vm_max_x", "vm_max_y", "vm_max_z")
     vals = tuple(_scalar(step, k) for k in keys)
     if all(math.isfinite(v) for v in vals):
         return vals  # type: ignore[return-value]
-    best = (math.nan,) * 4
-    for name, plane in step.planes.items():
-        if "vm" not in plane.fields:
-            continue
-        if not np.isfinite(plane.fields["vm"]).all():
-            continue  # a plane a closed form does not cover
-        vm, s, z = plane.vm_max()
-        if not math.isfinite(best[0]) or vm > best[0]:
-            x0 = float(step.scalars.get("x0", 0.0))
-            y0 = float(step.scalars.get("y0", 0.0))
-            best = (vm, s, y0, z) if name == "xz" else (vm, x0, s, z)
-    return best
+    return vm_max_location(step.planes, float(step.scalars.get("x0", 0.0)),
+                           float(step.scalars.get("y0", 0.0)))
 
 
 def _plane_edges(step: StepResult, name: str, s: np.ndarray, x0: float, y0: float
@@ -206,36 +188,48 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
                   x0: float = 0.0, y0: float = 0.0) -> list[tuple[str, str, float]]:
     """Metric rows (quantity, metric, value) of step ``sa`` against reference ``sb``
     (planes through (x0, y0))."""
-    rows: list[tuple[str, str, float]] = []
     hx = max(_spacing(sa.x), _spacing(sb.x))
     hy = max(_spacing(sa.y), _spacing(sb.y))
-    h = max(hx, hy)
+    rows = _surface_rows(sa, sb, a0, p0)
+    plane_rows, hz = _plane_rows(sa, sb, p0, x0, y0, hx, hy)
+    return rows + plane_rows + _scalar_rows(sa, sb, a0, p0, hx, hy, hz)
 
-    # surface fields on the contact common to both solvers
-    if sa.surface and sb.surface and "p_n" in sa.surface and "p_n" in sb.surface:
-        xs, ys = common_axis(sa.x, sb.x), common_axis(sa.y, sb.y)
-        if xs.size and ys.size:
-            pa = sample((sa.x, sa.y), sa.surface["p_n"], (xs, ys))
-            pb = sample((sb.x, sb.y), sb.surface["p_n"], (xs, ys))
-            contact = (pa > 0) & (pb > 0)
-            fields = {"p_n": (pa, pb)}
-            for q in tol.SURFACE_FIELDS[1:]:
-                if q in sa.surface and q in sb.surface:
-                    fields[q] = (sample((sa.x, sa.y), sa.surface[q], (xs, ys)),
-                                 sample((sb.x, sb.y), sb.surface[q], (xs, ys)))
-            pt_ref = None
-            if "p_x" in fields and "p_y" in fields:
-                pt_ref = np.hypot(fields["p_x"][1], fields["p_y"][1])
-            inner = interior(contact)
-            for q, (fa, fb) in fields.items():
-                scale = p0 if q.startswith("p_") else a0
-                ref = pt_ref if q in ("p_x", "p_y") else None
-                err = field_errors(fa, fb, contact, scale, ref, max_mask=inner)
-                if err is not None:
-                    rows += [(q, m, err[m]) for m in tol.METRICS[q]]
 
-    # subsurface σ_VM planes
-    hz = 0.0
+def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float
+                  ) -> list[tuple[str, str, float]]:
+    """Surface fields on the contact common to both solvers."""
+    if not (sa.surface and sb.surface and "p_n" in sa.surface and "p_n" in sb.surface):
+        return []
+    xs, ys = common_axis(sa.x, sb.x), common_axis(sa.y, sb.y)
+    if not (xs.size and ys.size):
+        return []
+    pa = sample((sa.x, sa.y), sa.surface["p_n"], (xs, ys))
+    pb = sample((sb.x, sb.y), sb.surface["p_n"], (xs, ys))
+    contact = (pa > 0) & (pb > 0)
+    fields = {"p_n": (pa, pb)}
+    for q in tol.SURFACE_FIELDS[1:]:
+        if q in sa.surface and q in sb.surface:
+            fields[q] = (sample((sa.x, sa.y), sa.surface[q], (xs, ys)),
+                         sample((sb.x, sb.y), sb.surface[q], (xs, ys)))
+    pt_ref = None
+    if "p_x" in fields and "p_y" in fields:
+        pt_ref = np.hypot(fields["p_x"][1], fields["p_y"][1])
+    inner = interior(contact)
+    rows = []
+    for q, (fa, fb) in fields.items():
+        scale = p0 if q.startswith("p_") else a0
+        ref = pt_ref if q in ("p_x", "p_y") else None
+        err = field_errors(fa, fb, contact, scale, ref, max_mask=inner)
+        if err is not None:
+            rows += [(q, m, err[m]) for m in tol.METRICS[q]]
+    return rows
+
+
+def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
+                hx: float, hy: float) -> tuple[list[tuple[str, str, float]], float]:
+    """Subsurface σ_VM planes; also the larger depth spacing hz of the planes (0 if
+    none)."""
+    rows, hz = [], 0.0
     for q, name in tol.PLANE_FIELDS.items():
         pa_, pb_ = sa.planes.get(name), sb.planes.get(name)
         if pa_ is None or pb_ is None or "vm" not in pa_.fields or "vm" not in pb_.fields:
@@ -251,8 +245,15 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
         err = field_errors(fa, fb, None, p0, max_mask=off_edges(ss, zs, edges, width))
         if err is not None:
             rows += [(q, m, err[m]) for m in tol.METRICS[q]]
+    return rows, hz
 
-    # scalars
+
+def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float,
+                 hy: float, hz: float) -> list[tuple[str, str, float]]:
+    """Peak values (relative), semi-widths and equivalent radii (in cells), and the
+    location of the σ_VM maximum (in cells and in a0)."""
+    h = max(hx, hy)
+    rows: list[tuple[str, str, float]] = []
     scale_of = {"p_max": p0, "vm_max": p0, "w_max": a0, "wear_volume": a0**3}
     for q in tol.REL_SCALARS:
         a, b = _scalar(sa, q), _scalar(sb, q)
@@ -277,7 +278,6 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
         ra = math.sqrt(max(a, 0.0) / math.pi) if math.isfinite(a) else math.nan
         rb = math.sqrt(max(b, 0.0) / math.pi) if math.isfinite(b) else math.nan
         rows.append((q, "cells", abs(ra - rb) / h))
-
     la, lb = _vm_location(sa), _vm_location(sb)
     if all(math.isfinite(v) for v in la + lb):
         d = np.subtract(la[1:], lb[1:])
@@ -293,12 +293,12 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
 
 def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
     """metrics.csv rows for one sweep point: every pair, every common output step."""
-    a0, p0 = hertz_scales(case)
+    a0, p0 = case.hertz_scales
     records = []
     for sa_name, sb_name in pairs(list(results)):
         pair = f"{sa_name}-{sb_name}"
-        steps_a = {step_number(s, i): s for i, s in enumerate(results[sa_name].steps)}
-        steps_b = {step_number(s, i): s for i, s in enumerate(results[sb_name].steps)}
+        steps_a = {s.number(i): s for i, s in enumerate(results[sa_name].steps)}
+        steps_b = {s.number(i): s for i, s in enumerate(results[sb_name].steps)}
         for n in sorted(set(steps_a) & set(steps_b)):
             sa, sb = steps_a[n], steps_b[n]
             rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=case.stress.x0,

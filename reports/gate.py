@@ -1,15 +1,18 @@
-"""``contact-vv gate``: print the metrics table; fail on any failed metric, non-converged
-run or incomplete case, naming each."""
+"""``contact-vv gate``: print the metrics table; fail on any failed metric (``passed``
+recomputed from value and tolerance; a recorded ``passed`` that disagrees is a problem
+too), non-converged run, incomplete or damaged case, naming each."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import TextIO
 
 import pandas as pd
 
-from .errors import UserError
-from .results import Scan, not_converged, scan
+from .errors import RunFailed, UserError
+from .layout import METRICS
+from .results import CaseResults, Scan, not_converged, scan
 
 _SHOW = ["case", "param", "step", "pair", "quantity", "metric", "value", "tolerance",
          "passed", "tolerance_key"]
@@ -30,25 +33,52 @@ def _where(case: str, param: object, step: object) -> str:
         f" step {int(step)}" if not pd.isna(step) else "")
 
 
-def problems(results: Scan) -> list[str]:
-    """One line per failed metric, non-converged run and incomplete case."""
+def _num(x: float) -> str:
+    return f"{x:.4g}"
+
+
+def metric_problems(case: CaseResults) -> list[str]:
+    """One line per failed metric of a case (``passed`` as recomputed from value and
+    tolerance, :func:`reports.results.passes`) and per metric whose recorded ``passed``
+    disagrees with that."""
     lines = []
-    table = metrics_table(results)
-    if not table.empty:
-        failed = table[~table["passed"].astype(str).str.lower().isin(["true", "1"])]
-        for r in failed.itertuples(index=False):
+    for r in case.metrics.itertuples(index=False):
+        what = f"{_where(case.name, r.param, r.step)} {r.pair} {r.quantity} {r.metric}"
+        value, tol = float(r.value), float(r.tolerance)
+        if not r.passed:
             key = getattr(r, "tolerance_key", "")
-            lines.append(
-                f"FAIL {_where(r.case, r.param, r.step)} {r.pair} {r.quantity} {r.metric} = "
-                f"{r.value:.4g} > tolerance {r.tolerance:.4g}"
-                + (f" (tolerance key {key})" if isinstance(key, str) and key else ""))
+            if not math.isfinite(value):
+                why = f"= {value} (not a finite number; tolerance {_num(tol)})"
+            elif not math.isfinite(tol):
+                why = f"= {_num(value)} against tolerance {tol} (not a finite number)"
+            else:
+                why = f"= {_num(value)} > tolerance {_num(tol)}"
+            lines.append(f"FAIL {what} {why}"
+                         + (f" (tolerance key {key})" if isinstance(key, str) and key else ""))
+        if bool(r.passed_recorded) != bool(r.passed):
+            lines.append(f"INCONSISTENT {what}: {case.path / METRICS} records passed = "
+                         f"{bool(r.passed_recorded)}, but value {_num(value)} against "
+                         f"tolerance {_num(tol)} {'passes' if r.passed else 'fails'}")
+    return lines
+
+
+def case_problems(results: Scan) -> list[str]:
+    """One line per incomplete and per damaged case."""
+    return ([f"INCOMPLETE {name}: {reason}" for name, reason in results.incomplete.items()]
+            + [f"DAMAGED {name}: {reason}" for name, reason in results.damaged.items()])
+
+
+def problems(results: Scan) -> list[str]:
+    """One line per failed or inconsistent metric, non-converged run, incomplete and
+    damaged case."""
+    lines = []
+    for case in results.complete:
+        lines += metric_problems(case)
     for case in results.complete:
         for r in not_converged(case.summary).itertuples(index=False):
             lines.append(f"NOT CONVERGED {_where(case.name, r.param, r.step)} "
                          f"solver {r.solver}")
-    for name, reason in results.incomplete.items():
-        lines.append(f"INCOMPLETE {name}: {reason}")
-    return lines
+    return lines + case_problems(results)
 
 
 def stale_case_file(mf: dict) -> bool:
@@ -61,9 +91,11 @@ def stale_case_file(mf: dict) -> bool:
 
 def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None = None,
              update_baseline: Path | None = None, drift_tol: float | None = None) -> int:
-    """Print the table and the problems; 0 if none, 1 otherwise.
+    """Print the table and the problems; 0 if none, else :class:`RunFailed` carrying one
+    line per problem (after printing them: the CLI repeats them as errors, exit 1).
 
-    ``baseline``: also fail on key numbers that drifted from the baselines in that folder;
+    ``baseline``: also fail on key numbers that drifted from the baselines in that folder
+    (a baseline folder that cannot be read is a :class:`UserError`, before any output);
     ``update_baseline``: write the baselines of the current results there instead.
     """
     import sys
@@ -72,23 +104,23 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
 
     stream = stream or sys.stdout
     results = scan(out)
-    if not results.complete and not results.incomplete:
+    if results.empty:
         raise UserError(f"no results in {out} (run `contact-vv run` first)")
     if update_baseline is not None:
-        if results.incomplete:
-            raise UserError("refusing to update baselines from incomplete results: "
-                            + ", ".join(results.incomplete))
+        if results.incomplete or results.damaged:
+            raise UserError("refusing to update baselines from incomplete or damaged "
+                            "results: " + ", ".join([*results.incomplete, *results.damaged]))
         for path in bl.write(results, update_baseline):
             print(f"baseline written: {path}", file=stream)
         return 0
-    table = metrics_table(results)
-    with pd.option_context("display.max_rows", None, "display.width", 200,
-                           "display.max_colwidth", 40):
-        print(table.to_string(index=False) if not table.empty else "(no metrics)", file=stream)
     found = problems(results)
     if baseline is not None:
         found += bl.drift(results, baseline, bl.DEFAULT_DRIFT if drift_tol is None
                           else drift_tol)
+    table = metrics_table(results)
+    with pd.option_context("display.max_rows", None, "display.width", 200,
+                           "display.max_colwidth", 40):
+        print(table.to_string(index=False) if not table.empty else "(no metrics)", file=stream)
     for case in results.complete:
         for solver, reason in case.manifest.get("skipped", {}).items():
             print(f"note: {case.name}: solver {solver} not run ({reason})", file=stream)
@@ -104,4 +136,6 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
           f"{len(found)} problem(s)", file=stream)
     for line in found:
         print(line, file=stream)
-    return 1 if found else 0
+    if found:
+        raise RunFailed(found)
+    return 0

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import base64
 import html
+import json
 import math
 from pathlib import Path
 from typing import Any
@@ -14,7 +15,7 @@ import pandas as pd
 
 from cases.result import atomic_write_text
 
-from . import convergence, plots
+from . import convergence, plots, solvers
 from .gate import metrics_table, problems
 from .results import CaseResults, Scan, not_converged, scan
 
@@ -74,17 +75,6 @@ def _scales(case: CaseResults) -> dict[str, tuple[float, float]]:
             for p in case.manifest.get("points", [])}
 
 
-def _cell_size(point: dict[str, Any], solver: str) -> float:
-    """Representative cell size of a solver at a sweep point [mm] (NaN if unknown)."""
-    try:
-        if solver == "fem":
-            return float(point["fem"]["h"]) * float(point["hertz_a0"])
-        g = point["grid"]
-        return max(g["Lx"] / g["nx"], g["Ly"] / g["ny"])
-    except (KeyError, TypeError, ZeroDivisionError):
-        return math.nan
-
-
 def convergence_frame(case: CaseResults) -> pd.DataFrame:
     """Observed order and GCI of p_max and σ_VM,max from the three finest grids of every
     solver whose cell size varies across the sweep points (last output step)."""
@@ -93,11 +83,13 @@ def convergence_frame(case: CaseResults) -> pd.DataFrame:
     if summary.empty:
         return pd.DataFrame()
     last = summary.sort_values("step").groupby(["solver", "param"], sort=False).tail(1)
+    if "cell_size" not in last.columns:
+        return pd.DataFrame()
     for solver, sub in last.groupby("solver", sort=False):
-        if solver == "analytic":
+        if solvers.record(solver).closed_form:
             continue
-        h = sub["param"].map(lambda p, s=solver: _cell_size(case.point(p), s))
-        sub = sub.assign(h=h).dropna(subset=["h"]).drop_duplicates("h").sort_values("h")
+        sub = sub.assign(h=sub["cell_size"]).dropna(subset=["h"]).drop_duplicates("h")
+        sub = sub.sort_values("h")
         if len(sub) < 3:
             continue
         three = sub.head(3)
@@ -128,9 +120,30 @@ def _worst(metrics: pd.DataFrame) -> pd.DataFrame:
 
 
 def case_section(case: CaseResults) -> str:
-    """The HTML section of one case."""
+    """The HTML section of one case: header, summary, fields per sweep point, sweep,
+    metrics, grid convergence, Dask check and provenance."""
     mf, name = case.manifest, case.name
     scales = _scales(case)
+    parts = [*_header(case)]
+    if not case.summary.empty:
+        parts += _summary(case, scales)
+    for param in dict.fromkeys(mf.get("params", [""])):
+        parts += _fields(case, param, scales)
+    sweep = plots.sweep_figure(case.summary, scales, f"Sweep: {name}") \
+        if not case.summary.empty else None
+    if sweep is not None:
+        parts.append('<h3>Sweep</h3><div class="sweep">' + _fig(sweep, "sweep") + "</div>")
+    parts += _metrics(case)
+    parts += _convergence(case)
+    parts += _sweep_check(case)
+    parts.append(provenance_html(mf))
+    parts.append("</section>")
+    return "\n".join(p for p in parts if p)
+
+
+def _header(case: CaseResults) -> list[str]:
+    """Title, description, solvers, skipped solvers and non-converged steps."""
+    mf, name = case.manifest, case.name
     parts = [f'<section class="case" id="case-{_e(name)}"><h2>{_e(name)}</h2>',
              f"<p>{_e(mf.get('description', ''))} — kind <b>{_e(mf.get('kind'))}</b>, "
              f"solvers {_e(', '.join(mf.get('solvers', [])))}"
@@ -140,72 +153,78 @@ def case_section(case: CaseResults) -> str:
     bad = not_converged(case.summary)
     if not bad.empty:
         parts.append(f'<p class="warn bad">{len(bad)} output step(s) did not converge</p>')
+    return parts
 
-    # summary of the last step, dimensionless
+
+def _summary(case: CaseResults, scales: dict[str, tuple[float, float]]) -> list[str]:
+    """The last output step of every (solver, sweep point), dimensionless."""
     s = case.summary
-    if not s.empty:
-        last = s.sort_values("step").groupby(["solver", "param"], sort=False).tail(1)
-        a0 = last["param"].map(lambda p: scales.get(p, (math.nan,) * 2)[0])
-        p0 = last["param"].map(lambda p: scales.get(p, (math.nan,) * 2)[1])
-        view = pd.DataFrame({
-            "solver": last["solver"], "param": last["param"], "step": last["step"],
-            "P [N]": last["P"], "p_max/p0": last["p_max"] / p0, "a_x/a0": last["a_x"] / a0,
-            "a_y/a0": last["a_y"] / a0, "w_max [µm]": 1e3 * last["w_max"],
-            "σ_VM,max/p0": last["vm_max"] / p0, "z(σ_VM,max)/a0": last["vm_max_z"] / a0,
-            "iterations": last["iterations"], "converged": last["converged"],
-            "wall [s]": last["wall_s"]})
-        parts.append('<h3 id="summary-' + _e(name) + '">Summary (last output step)</h3>')
-        parts.append(table_html(view, left=2))
+    last = s.sort_values("step").groupby(["solver", "param"], sort=False).tail(1)
+    a0 = last["param"].map(lambda p: scales.get(p, (math.nan,) * 2)[0])
+    p0 = last["param"].map(lambda p: scales.get(p, (math.nan,) * 2)[1])
+    view = pd.DataFrame({
+        "solver": last["solver"], "param": last["param"], "step": last["step"],
+        "P [N]": last["P"], "p_max/p0": last["p_max"] / p0, "a_x/a0": last["a_x"] / a0,
+        "a_y/a0": last["a_y"] / a0, "w_max [µm]": 1e3 * last["w_max"],
+        "σ_VM,max/p0": last["vm_max"] / p0, "z(σ_VM,max)/a0": last["vm_max_z"] / a0,
+        "iterations": last["iterations"], "converged": last["converged"],
+        "wall [s]": last["wall_s"]})
+    return ['<h3 id="summary-' + _e(case.name) + '">Summary (last output step)</h3>',
+            table_html(view, left=2)]
 
-    params = list(dict.fromkeys(mf.get("params", [""])))
-    solvers = list(mf.get("solvers", []))
-    for param in params:
-        a0, p0 = scales.get(param, (math.nan, math.nan))
-        if not (math.isfinite(a0) and math.isfinite(p0)):
-            continue
-        history = {sv: case.steps(sv, param) for sv in solvers}
-        history = {sv: h for sv, h in history.items() if h}
-        if not history:
-            continue
-        label = f" — {param}" if param else ""
-        parts.append(f"<h3>Fields{_e(label)}</h3>")
-        common = set.intersection(*(set(h) for h in history.values()))
-        n = max(common) if common else max(max(h) for h in history.values())
-        at = {sv: h[n] for sv, h in history.items() if n in h}
-        where = f"{name}{label}, output step {n}"
-        parts.append('<div class="profiles">' + _fig(
-            plots.traction_profiles(at, a0, p0, f"Tractions through the centre: {where}"),
-            "traction profiles") + "</div>")
-        parts.append('<div class="differences">' + _fig(
-            plots.difference_maps(at, a0, p0, "p_n", f"Pressure differences: {where}"),
-            "difference maps") + _fig(
-            plots.plane_difference_maps(at, a0, p0, "xz", f"σ_VM differences: {where}"),
-            "stress difference maps") + "</div>")
-        parts.append('<div class="vm-planes">' + _fig(
-            plots.vm_planes(at, a0, p0, f"σ_VM planes: {where}"), "von Mises planes")
-            + "</div>")
-        sub = s[s["param"] == param]
-        labels = {}
-        if not sub.empty:
-            t, tl = plots.progress_axis(sub, a0)
-            short = plots.SHORT.get(tl, tl)
-            labels = {int(k): f"{short}={v:.3g}" for k, v in zip(sub["step"], t, strict=True)}
-        parts.append('<div class="wear">' + _fig(
-            plots.wear_profiles(history, a0, labels, f"Wear profiles: {name}{label}"),
-            "wear profiles") + "</div>")
-        parts.append('<div class="evolution">' + _fig(
-            plots.histories(sub, a0, p0, f"Evolution: {name}{label}"), "evolution")
-            + "</div>")
-        tables = {sv: case.tables(sv, param) for sv in solvers}
-        parts.append('<div class="loops">' + _fig(
-            plots.loops(tables, f"Fretting loops: {name}{label}"), "fretting loops")
-            + "</div>")
 
-    sweep = plots.sweep_figure(s, scales, f"Sweep: {name}") if not s.empty else None
-    if sweep is not None:
-        parts.append('<h3>Sweep</h3><div class="sweep">' + _fig(sweep, "sweep") + "</div>")
+def _fields(case: CaseResults, param: str, scales: dict[str, tuple[float, float]]
+            ) -> list[str]:
+    """The plots of one sweep point: tractions, differences, σ_VM planes, wear, evolution,
+    fretting loops (at the last output step all solvers have)."""
+    name, s = case.name, case.summary
+    a0, p0 = scales.get(param, (math.nan, math.nan))
+    if not (math.isfinite(a0) and math.isfinite(p0)):
+        return []
+    solvers = list(case.manifest.get("solvers", []))
+    history = {sv: case.steps(sv, param) for sv in solvers}
+    history = {sv: h for sv, h in history.items() if h}
+    if not history:
+        return []
+    label = f" — {param}" if param else ""
+    common = set.intersection(*(set(h) for h in history.values()))
+    n = max(common) if common else max(max(h) for h in history.values())
+    at = {sv: h[n] for sv, h in history.items() if n in h}
+    where = f"{name}{label}, output step {n}"
+    parts = [f"<h3>Fields{_e(label)}</h3>"]
+    parts.append('<div class="profiles">' + _fig(
+        plots.traction_profiles(at, a0, p0, f"Tractions through the centre: {where}"),
+        "traction profiles") + "</div>")
+    parts.append('<div class="differences">' + _fig(
+        plots.difference_maps(at, a0, p0, "p_n", f"Pressure differences: {where}"),
+        "difference maps") + _fig(
+        plots.plane_difference_maps(at, a0, p0, "xz", f"σ_VM differences: {where}"),
+        "stress difference maps") + "</div>")
+    parts.append('<div class="vm-planes">' + _fig(
+        plots.vm_planes(at, a0, p0, f"σ_VM planes: {where}"), "von Mises planes")
+        + "</div>")
+    sub = s[s["param"] == param] if not s.empty else s
+    labels = {}
+    if not sub.empty:
+        t, tl = plots.progress_axis(sub, a0)
+        short = plots.SHORT.get(tl, tl)
+        labels = {int(k): f"{short}={v:.3g}" for k, v in zip(sub["step"], t, strict=True)}
+    parts.append('<div class="wear">' + _fig(
+        plots.wear_profiles(history, a0, labels, f"Wear profiles: {name}{label}"),
+        "wear profiles") + "</div>")
+    parts.append('<div class="evolution">' + _fig(
+        plots.histories(sub, a0, p0, f"Evolution: {name}{label}"), "evolution")
+        + "</div>")
+    tables = {sv: case.tables(sv, param) for sv in solvers}
+    parts.append('<div class="loops">' + _fig(
+        plots.loops(tables, f"Fretting loops: {name}{label}"), "fretting loops")
+        + "</div>")
+    return parts
 
-    parts.append(f'<h3 id="metrics-{_e(name)}">Metrics</h3><div class="metrics">')
+
+def _metrics(case: CaseResults) -> list[str]:
+    """The worst value of every (pair, quantity, metric) and, folded, every metric."""
+    parts = [f'<h3 id="metrics-{_e(case.name)}">Metrics</h3><div class="metrics">']
     m = case.metrics
     if m.empty:
         parts.append("<p>No pair of solvers to compare.</p>")
@@ -220,33 +239,38 @@ def case_section(case: CaseResults) -> str:
                      + table_html(m[[c for c in cols if c in m.columns]], status="passed",
                                   left=5) + "</div></details>")
     parts.append("</div>")
+    return parts
 
-    parts.append(f'<h3 id="convergence-{_e(name)}">Grid convergence</h3>'
-                 '<div class="convergence">')
+
+def _convergence(case: CaseResults) -> list[str]:
+    """Observed orders and GCIs of the case's grid study, or how to run one."""
+    name = case.name
+    parts = [f'<h3 id="convergence-{_e(name)}">Grid convergence</h3>'
+             '<div class="convergence">']
     conv = convergence_frame(case)
     if conv.empty:
         parts.append("<p>No grid study in these results (needs three sweep points of "
                      "different cell size). Run e.g. <code>contact-vv sweep "
-                     f"{_e(mf.get('case', name))} --param grid.nx=21,41,81 --param "
+                     f"{_e(case.manifest.get('case', name))} --param grid.nx=21,41,81 --param "
                      "grid.ny=21,41,81</code>.</p>")
     else:
         parts.append("<p>Observed order p and Roache's GCI (F<sub>s</sub> = 1.25) from the "
                      "three finest grids; cell sizes h in units of a0.</p>")
         parts.append(table_html(conv, status="converging", left=2))
     parts.append("</div>")
-    check = case.path / "sweep_check.json"
-    if check.is_file():
-        import json
+    return parts
 
-        c = json.loads(check.read_text())
-        parts.append(
-            f'<p class="{"ok" if c.get("identical") else "bad"}">Sweep on Dask: '
+
+def _sweep_check(case: CaseResults) -> list[str]:
+    """The Dask-against-serial check of a sweep, if one was made."""
+    check = case.path / "sweep_check.json"
+    if not check.is_file():
+        return []
+    c = json.loads(check.read_text())
+    return [f'<p class="{"ok" if c.get("identical") else "bad"}">Sweep on Dask: '
             f'{c["parallel_wall_s"]:.1f} s wall against {c["serial_wall_s"]:.1f} s serial '
             f'(speed-up {c["speedup"]:.2f}x); numbers '
-            f'{"identical to" if c.get("identical") else "DIFFERENT from"} the serial run.</p>')
-    parts.append(provenance_html(mf))
-    parts.append("</section>")
-    return "\n".join(p for p in parts if p)
+            f'{"identical to" if c.get("identical") else "DIFFERENT from"} the serial run.</p>']
 
 
 def provenance_html(mf: dict[str, Any]) -> str:
@@ -285,12 +309,21 @@ def provenance_html(mf: dict[str, Any]) -> str:
 
 
 def render(results: Scan, out: Path) -> str:
-    """The whole report page."""
+    """The whole report page.  A case whose files turn out to be damaged while its
+    section is drawn is moved from ``results.complete`` to ``results.damaged``."""
     from .manifest import provenance
+    from .results import DamagedResult
 
     when = provenance()["date"]
     toc, sections = [], []
-    for case in results.complete:
+    for case in list(results.complete):
+        try:
+            section = case_section(case)
+        except DamagedResult as exc:
+            results.complete.remove(case)
+            results.damaged[case.path.name] = str(exc)
+            continue
+        sections.append(section)
         m = case.metrics
         n_ok = int(m["passed"].astype(str).str.lower().isin(["true", "1"]).sum()) \
             if not m.empty else 0
@@ -299,13 +332,14 @@ def render(results: Scan, out: Path) -> str:
         toc.append(f'<li><a href="#case-{_e(case.name)}">{_e(case.name)}</a> '
                    f'<span class="{status}">{n_ok}/{len(m)} metrics passed'
                    + (f", {bad} not converged" if bad else "") + "</span></li>")
-        sections.append(case_section(case))
     warn = ""
-    if results.incomplete:
+    if results.incomplete or results.damaged:
         items = "".join(f"<li><b>{_e(k)}</b>: {_e(v)}</li>"
                         for k, v in results.incomplete.items())
-        warn = (f'<div class="warn" id="incomplete"><b>Incomplete runs (not reported):</b>'
-                f"<ul>{items}</ul></div>")
+        items += "".join(f"<li><b>{_e(k)}</b>: damaged: {_e(v)}</li>"
+                         for k, v in results.damaged.items())
+        warn = (f'<div class="warn" id="incomplete"><b>Incomplete or damaged runs (not '
+                f"reported):</b><ul>{items}</ul></div>")
     found = problems(results)
     verdict = (f'<p class="ok" id="verdict">Gate: pass ({len(metrics_table(results))} '
                "metrics)</p>" if not found else
@@ -320,13 +354,22 @@ def render(results: Scan, out: Path) -> str:
 
 
 def write_report(out: Path) -> Path:
-    """Write ``out/index.html`` atomically from whatever complete results ``out`` holds."""
-    from .errors import UserError
+    """Write ``out/index.html`` atomically from whatever complete results ``out`` holds.
+
+    Incomplete or damaged cases are listed in the page, and then raised as
+    :class:`RunFailed` (one line each, the page written: the CLI exits 1).
+    """
+    from .errors import RunFailed, UserError
+    from .gate import case_problems
 
     out = Path(out)
     results = scan(out)
-    if not results.complete and not results.incomplete:
+    if results.empty:
         raise UserError(f"no results in {out} (run `contact-vv run` first)")
     path = out / "index.html"
     atomic_write_text(path, render(results, out))
+    lines = case_problems(results)
+    if lines:
+        raise RunFailed([*lines, f"report {path} written without the {len(lines)} "
+                         "incomplete or damaged case(s) above"])
     return path

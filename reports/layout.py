@@ -7,8 +7,11 @@
     DIR/<case>/metrics.csv                        one row per compared quantity
     DIR/<case>/fields/<solver>/<param>/step_NNNN.npz   surface fields and planes
     DIR/<case>/fields/<solver>/<param>/step_NNNN.vtu   FEM meshes (ParaView)
+    DIR/<case>/fields/<solver>/<param>/step_NNNN_surface.vtu   grid steps: surface cells
+    DIR/<case>/fields/<solver>/<param>/step_NNNN_planes.vtu    grid steps: xz/yz planes
     DIR/<case>/fields/<solver>/<param>/<table>.csv     tables (e.g. fretting loops)
     DIR/.<case>.partial/                          staging area of a run in progress
+    DIR/.<case>.lock                              locked by the run of <case> in progress
 
 ``<param>`` is the sweep label (``mu=0.25``) or ``base`` for a case without a sweep.
 A run writes into the staging directory and renames it to ``DIR/<case>`` only after the
@@ -34,8 +37,10 @@ _UNSAFE = re.compile(r"[^A-Za-z0-9._=+-]")
 
 
 def safe_name(text: str) -> str:
-    """A file-name-safe form of a case name or sweep label."""
-    return _UNSAFE.sub("_", text) or "_"
+    """A file-name-safe form of a case name or sweep label: one plain path component
+    (never empty, ``.`` or ``..``)."""
+    name = _UNSAFE.sub("_", text)
+    return name if name.strip(".") else "_" * max(len(name), 1)
 
 
 def param_dir(param: str) -> str:
@@ -49,6 +54,11 @@ def case_dir(out: Path, case: str) -> Path:
 
 def staging_dir(out: Path, case: str) -> Path:
     return Path(out) / f".{safe_name(case)}{PARTIAL_SUFFIX}"
+
+
+def lock_file(out: Path, case: str) -> Path:
+    """The file whose OS lock a run of ``case`` holds (reports.staging.case_lock)."""
+    return Path(out) / f".{safe_name(case)}.lock"
 
 
 def unit_dir(root: Path, solver: str, param: str) -> Path:

@@ -11,6 +11,7 @@ import datetime as _dt
 import hashlib
 import importlib.metadata
 import json
+import math
 import os
 import platform
 import subprocess
@@ -139,22 +140,127 @@ def write(root: Path, manifest: dict[str, Any]) -> None:
     atomic_write_text(Path(root) / layout.MANIFEST, json.dumps(body, indent=1, default=str))
 
 
+#: what a manifest value must be, by key (absent keys are allowed; ``files`` is required)
+_NUMBER = (int, float)
+_TYPES: dict[str, tuple[type, ...]] = {
+    "case": (str,), "dir": (str,), "kind": (str,), "description": (str,),
+    "case_file": (str,), "case_sha256": (str, type(None)), "quick": (bool,),
+    "overrides": (dict, type(None)), "params": (list,), "points": (list,),
+    "solvers": (list,), "skipped": (dict,), "units": (list,), "wall_s": _NUMBER,
+    "unit_wall_s": _NUMBER, "provenance": (dict,), "sources": (dict, type(None)),
+    "sources_changed_during_run": (bool,), "files": (dict,),
+}
+#: keys of the items of list- or dict-valued entries, with their types
+_ITEMS: dict[str, dict[str, tuple[type, ...]]] = {
+    "points": {"param": (str,), "hertz_a0": _NUMBER, "hertz_p0": _NUMBER},
+    "units": {"solver": (str,), "param": (str,), "wall_s": _NUMBER},
+    "provenance": {"git": (dict,), "versions": (dict,), "threads": (dict,),
+                   "command": (list,)},
+}
+#: item keys that are scales (divided by): positive finite numbers
+_POSITIVE = frozenset({"hertz_a0", "hertz_p0"})
+#: files a later command may add beside a complete run (views, not results)
+ADDED_AFTER = frozenset({"sweep.png", "sweep_check.json"})
+
+
+_JSON_NAMES = {dict: "an object", list: "a list", str: "a string", int: "a number",
+               float: "a number", bool: "true or false", type(None): "null"}
+
+
+def json_kind(value: Any) -> str:
+    """What a decoded JSON value is, in JSON's words ("a list", "a number", ...)."""
+    return _JSON_NAMES.get(type(value), type(value).__name__)
+
+
+def _type_name(types: tuple[type, ...]) -> str:
+    return " or ".join(dict.fromkeys(_JSON_NAMES.get(t, t.__name__) for t in types))
+
+
+def _is(value: Any, types: tuple[type, ...]) -> bool:
+    return isinstance(value, types) and not (isinstance(value, bool) and bool not in types)
+
+
+def check_schema(body: Any) -> list[str]:
+    """What is wrong with the structure of a manifest (empty if nothing)."""
+    if not isinstance(body, dict):
+        return [f"not a JSON object ({json_kind(body)})"]
+    wrong = []
+    if "files" not in body:
+        wrong.append("no files")
+    for key, types in _TYPES.items():
+        if key in body and not _is(body[key], types):
+            wrong.append(f"{key} is not {_type_name(types)}")
+    prov = body.get("provenance")
+    for key in ("params", "solvers", "command"):
+        items = body.get(key) if key != "command" else \
+            prov.get(key) if isinstance(prov, dict) else None
+        if isinstance(items, list) and not all(isinstance(v, str) for v in items):
+            wrong.append(f"{key} is not a list of strings")
+    for key in ("files", "sources"):
+        if isinstance(body.get(key), dict) and not all(
+                isinstance(v, str) for v in body[key].values()):
+            wrong.append(f"{key} does not map names to strings")
+    for key, fields in _ITEMS.items():
+        value = body.get(key)
+        listed = isinstance(value, list) and list in _TYPES[key]
+        items = value if listed else [value] if isinstance(value, dict) else []
+        for i, item in enumerate(items):
+            where = f"{key}[{i}]" if listed else key
+            if not isinstance(item, dict):
+                wrong.append(f"{where} is not an object")
+                continue
+            for name, types in fields.items():
+                required = key == "units"  # the report tabulates these three
+                if (name in item or required) and not _is(item.get(name), types):
+                    wrong.append(f"{where}.{name} is not {_type_name(types)}")
+                elif name in _POSITIVE and name in item and not (
+                        math.isfinite(item[name]) and item[name] > 0):
+                    wrong.append(f"{where}.{name} is {item[name]!r}, not a positive number")
+    for rel in body.get("files", {}) if isinstance(body.get("files"), dict) else ():
+        parts = rel.split("/")
+        if not rel or rel.startswith("/") or "\\" in rel or ".." in parts or "" in parts:
+            wrong.append(f"files lists {rel!r}, a path outside the case directory")
+    return wrong
+
+
 def read(case_dir: Path, *, verify: bool = True) -> dict[str, Any]:
-    """The manifest of a complete case directory; :class:`IncompleteRun` otherwise."""
-    path = Path(case_dir) / layout.MANIFEST
-    if not path.is_file():
+    """The manifest of a complete case directory; :class:`IncompleteRun` otherwise
+    (:class:`reports.results.DamagedResult`, a subclass, if the manifest cannot be read
+    or is not shaped as a run writes it).
+
+    ``verify``: every file it lists must exist with the recorded SHA-256, and every file
+    of the directory must be listed (except dot files and :data:`ADDED_AFTER`).
+    """
+    from .results import Malformed, read_json, read_result
+
+    def parse(p: Path) -> dict[str, Any]:
+        body = read_json(p)
+        wrong = check_schema(body)
+        if wrong:
+            raise Malformed("not a run manifest: " + "; ".join(wrong[:3])
+                            + (f" (and {len(wrong) - 3} more)" if len(wrong) > 3 else ""))
+        return body
+
+    case_dir = Path(case_dir)
+    path = case_dir / layout.MANIFEST
+    if not path.exists() and not path.is_symlink():
         raise IncompleteRun(f"{case_dir}: no {layout.MANIFEST} (interrupted or not a run)")
-    try:
-        manifest = json.loads(path.read_text())
-    except (OSError, json.JSONDecodeError) as exc:
-        raise IncompleteRun(f"{path}: unreadable manifest ({exc})") from None
+    manifest = read_result(path, parse)
     if manifest.get("format") != FORMAT or manifest.get("complete") is not True:
         raise IncompleteRun(f"{path}: manifest not marked complete")
     if verify:
-        for rel, digest in manifest.get("files", {}).items():
-            f = Path(case_dir) / rel
+        files = manifest["files"]
+        for rel, digest in files.items():
+            f = case_dir / rel
             if not f.is_file():
-                raise IncompleteRun(f"{case_dir}: {rel} listed in the manifest is missing")
+                raise IncompleteRun(f"{case_dir}: {rel} listed in the manifest is "
+                                    + ("missing" if not f.exists() else "not a regular file"))
             if sha256_file(f) != digest:
                 raise IncompleteRun(f"{case_dir}: {rel} changed after the run (hash mismatch)")
+        for f in sorted(case_dir.rglob("*")):
+            rel = f.relative_to(case_dir).as_posix()
+            if (f.is_file() and rel not in files and rel != layout.MANIFEST
+                    and rel not in ADDED_AFTER and not f.name.startswith(".")):
+                raise IncompleteRun(f"{case_dir}: {rel} is not listed in the manifest "
+                                    "(added after the run)")
     return manifest

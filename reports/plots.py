@@ -22,16 +22,15 @@ from matplotlib.figure import Figure  # noqa: E402
 
 from cases.result import StepResult  # noqa: E402
 
+from . import solvers  # noqa: E402
 from .compare import common_axis, pairs, sample  # noqa: E402
 
-STYLE = {"ic": dict(color="C0", ls="-", marker="o", ms=3),
-         "fem": dict(color="C1", ls="--", marker="s", ms=3),
-         "analytic": dict(color="k", ls=":", marker=None)}
 DPI = 80
 
 
 def style(solver: str) -> dict:
-    return STYLE.get(solver, dict(ls="-."))
+    """Line style of a solver (its registry record)."""
+    return dict(solvers.record(solver).style)
 
 
 def png(fig: Figure) -> bytes:

@@ -1,51 +1,150 @@
-"""The solver registry: names -> lazily imported entry points ``solve(case, progress)``.
+"""The solver registry: one record per solver, the only place in ``reports`` that knows
+solvers by name.
 
-Solvers are resolved only when used, so a solver whose package has not landed (or fails
-to import) is reported as unavailable without breaking the others.  Each entry point
-takes a :class:`cases.model.Case` and returns a :class:`cases.result.RunResult`.
+Every solver is a package exposing the same protocol:
+
+- ``solve(case, *, progress=False, on_output=None) -> RunResult``: ``on_output`` receives
+  each output step as soon as it is computed (a runner writes it at once);
+- ``supports(case) -> str | None``: None when the solver handles the case, else the
+  reason it does not (the runner skips it with that note);
+- optionally ``estimate(case) -> cases.result.Cost``: its peak memory and wall time,
+  before any work (the planner refuses a case beyond the limits, naming the keys).
+
+The record adds what the reports need to know of a solver: its error budget against the
+exact solution (the default tolerance of a pair is the sum of its two budgets, see
+:mod:`reports.tolerances`), its plot style, its representative cell size, and whether it
+is a closed form (which may leave NaN where it says nothing and has no grid).  Packages
+are imported only when used, so a solver whose package fails to import is reported as
+unavailable without breaking the others.  Adding a solver is one record here and one
+package.
+
+Error budgets (at the resolutions of the bundled cases, quick grids included):
+
+- grid solvers (``ic``: piecewise-constant tractions on cells; the quick grids resolve a0
+  with ≈ 4 cells): a peak value is a cell average, ≈ (h/a)²/12 below the point value
+  (0.6 % at h/a = 0.27) plus the global discretisation error: 3 % for peak pressure and
+  wear, 2 % for σ_VM,max (an integral of the tractions, smoother than them).  Field norms
+  include the cells next to the contact edge, where p ∝ √(a − r) changes by O(√(h/a))
+  over one cell: 5 % in L2 and 10 % in the max norm for the pressure and wear, 3 % / 8 %
+  for σ_VM planes; tangential tractions 8 % / 15 %, because in partial slip they also
+  have a kink at the stick–slip boundary, resolved to a cell (measured on the 1.6 mm /
+  81² grid of case 1 at Q/μP = 0.5 and 0.75: 5.8 % and 2.9 % in L2; at Q/μP = 0.25 the
+  slip annulus is 0.7 cell wide and the error 9.2 %, hence the finer cattaneo_mindlin
+  grid).  Lengths are quantised to cells: semi-widths and the equivalent contact radius
+  are good to one cell, the stick-zone radius to 1.5 cells (it also depends on the slip
+  threshold), the σ_VM maximum (a broad maximum sampled on a lattice) to 1.5 cells or
+  0.3 a0 (one quick-grid cell is 0.26 a0).
+- ``fem`` (P2 elements, h ≈ a0/8 in the contact, finite block 20 a0, penalty 100 E*/h;
+  p_max within 0.4 % and σ_VM,max within 0.3 % on such meshes, ``docs/fem-notes.md``):
+  the grid budgets, except 5 % for wear quantities (penalty contact and the block's
+  compliance act on the wear increments).
+- closed forms (``analytic``: closed forms or converged quadrature, sampled on the
+  solver's grid): 0.5 % for scalars, 1 % / 2 % for field norms, 0.5 cell for lengths read
+  off a grid.
 """
 
 from __future__ import annotations
 
 import importlib
-from collections.abc import Callable
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
 
 from cases.model import Case
-from cases.result import RunResult
+from cases.result import Cost, RunResult
 
 from .errors import SolverUnavailable
 
 SolveFn = Callable[..., RunResult]
 
-#: solver name -> "module:function"; the order is the order of columns, rows and pairs.
-REGISTRY: dict[str, str] = {
-    "ic": "halfspace:solve",
-    "fem": "fem_reference:solve",
-    "analytic": "cases.analytic.solver:solve",
+#: quantities measured per surface field, per plane and as scalars (see reports.tolerances)
+_PLANES = ("vm_xz", "vm_yz")
+_TANGENTIAL = ("p_x", "p_y")
+_WEAR = ("wear_a", "wear_b", "w_max", "wear_volume")
+
+
+def grid_budget(quantity: str, metric: str) -> float:
+    """Expected error of a solver on a regular grid of cells (module doc)."""
+    if metric == "rel":
+        return 0.02 if quantity == "vm_max" else 0.03
+    if metric in ("l2", "max"):
+        if quantity in _PLANES:
+            return 0.03 if metric == "l2" else 0.08
+        if quantity in _TANGENTIAL:
+            return 0.08 if metric == "l2" else 0.15
+        return 0.05 if metric == "l2" else 0.10
+    if metric == "cells":
+        return 1.5 if quantity in ("stick_area", "vm_max_loc") else 1.0
+    return 0.3  # a0: about one cell of the quick grids (h = 0.26 a0)
+
+
+def fem_budget(quantity: str, metric: str) -> float:
+    """Expected error of the P2 penalty FEM (module doc)."""
+    if quantity in _WEAR and metric in ("rel", "l2"):
+        return 0.05
+    return grid_budget(quantity, metric)
+
+
+def closed_form_budget(quantity: str, metric: str) -> float:
+    """Expected error of a closed form sampled on a grid (module doc)."""
+    return {"rel": 0.005, "l2": 0.01, "max": 0.02, "cells": 0.5, "a0": 0.02}[metric]
+
+
+def grid_cell(case: Case) -> float:
+    """The larger cell side of the case's grid [mm]."""
+    return max(case.grid.dx, case.grid.dy)
+
+
+def fem_cell(case: Case) -> float:
+    """The FEM's element size in the contact zone [mm]: ``fem.h`` in units of a0."""
+    return case.fem.h * case.hertz_scales[0]
+
+
+def no_cell(case: Case) -> float:
+    """A closed form has no cell size."""
+    return math.nan
+
+
+@dataclass(frozen=True)
+class SolverRecord:
+    """What the reports know of one solver (module doc)."""
+
+    name: str
+    package: str  # importable module exposing solve() and supports()
+    budget: Callable[[str, str], float] = grid_budget
+    style: Mapping[str, Any] = field(default_factory=lambda: {"ls": "-."})
+    cell_size: Callable[[Case], float] = grid_cell
+    closed_form: bool = False
+    solve_attr: str = "solve"
+    supports_attr: str = "supports"
+    estimate_attr: str = "estimate"  # optional: Cost of a case before any work
+
+    def entry(self, attr: str) -> Callable:
+        """The callable ``attr`` of the package; SolverUnavailable if it cannot load."""
+        try:
+            module = importlib.import_module(self.package)
+        except ImportError as exc:
+            raise SolverUnavailable(f"solver {self.name!r} is not available: cannot import "
+                                    f"{self.package} ({exc})") from None
+        fn = getattr(module, attr, None)
+        if not callable(fn):
+            raise SolverUnavailable(f"solver {self.name!r} is not available: {self.package} "
+                                    f"has no entry point {attr}()")
+        return fn
+
+
+#: solver name -> record; the order is the order of columns, rows and pairs (the second
+#: solver of a pair is its reference).
+REGISTRY: dict[str, SolverRecord] = {
+    "ic": SolverRecord("ic", "halfspace", style={"color": "C0", "ls": "-", "marker": "o",
+                                                 "ms": 3}),
+    "fem": SolverRecord("fem", "fem_reference", budget=fem_budget, cell_size=fem_cell,
+                        style={"color": "C1", "ls": "--", "marker": "s", "ms": 3}),
+    "analytic": SolverRecord("analytic", "analytic", budget=closed_form_budget,
+                             cell_size=no_cell, closed_form=True,
+                             style={"color": "k", "ls": ":", "marker": None}),
 }
-
-#: solver name -> "module:function" deciding whether the solver applies to a case.
-#: ``has_solution`` is required of the analytic references (a case without one is not
-#: theirs); ``supports`` is optional for the numerical solvers (without it they claim
-#: every case, and a case they cannot handle fails loudly).
-APPLICABLE: dict[str, str] = {
-    "ic": "halfspace:supports",
-    "fem": "fem_reference:supports",
-    "analytic": "cases.analytic.solver:has_solution",
-}
-REQUIRED_APPLICABILITY = frozenset({"analytic"})
-
-
-def _import(target: str) -> Callable:
-    module_name, _, attr = target.partition(":")
-    try:
-        module = importlib.import_module(module_name)
-    except ImportError as exc:
-        raise SolverUnavailable(f"cannot import {module_name} ({exc})") from None
-    fn = getattr(module, attr, None)
-    if not callable(fn):
-        raise SolverUnavailable(f"{module_name} has no entry point {attr}()")
-    return fn
 
 
 def names() -> list[str]:
@@ -53,38 +152,43 @@ def names() -> list[str]:
     return list(REGISTRY)
 
 
+def record(name: str) -> SolverRecord:
+    """The record of solver ``name``; a name not registered (results written by another
+    version) gets a grid solver's defaults."""
+    return REGISTRY.get(name) or SolverRecord(name, package="")
+
+
 def resolve(name: str) -> SolveFn:
-    """The entry point of solver ``name``; :class:`SolverUnavailable` if it cannot load."""
+    """The ``solve`` entry point of solver ``name``; SolverUnavailable if it cannot load."""
     if name not in REGISTRY:
-        raise SolverUnavailable(
-            f"unknown solver {name!r} (known: {', '.join(REGISTRY)})"
-        )
-    try:
-        return _import(REGISTRY[name])
-    except SolverUnavailable as exc:
-        raise SolverUnavailable(f"solver {name!r} is not available: {exc}") from None
+        raise SolverUnavailable(f"unknown solver {name!r} (known: {', '.join(REGISTRY)})")
+    rec = REGISTRY[name]
+    return rec.entry(rec.solve_attr)
 
 
 def available(name: str) -> tuple[bool, str]:
     """(True, '') if solver ``name`` loads, else (False, reason)."""
     try:
         resolve(name)
+        rec = REGISTRY[name]
+        rec.entry(rec.supports_attr)
     except SolverUnavailable as exc:
         return False, str(exc)
     return True, ""
 
 
-def applies(name: str, case: Case) -> bool:
-    """Whether solver ``name`` has anything to say about ``case`` (e.g. an analytic solution).
-
-    A solver without an applicability test applies to every case, unless the test is
-    required of it (:data:`REQUIRED_APPLICABILITY`) and cannot be imported.
-    """
-    target = APPLICABLE.get(name)
-    if target is None:
-        return True
+def estimate(name: str, case: Case) -> Cost | None:
+    """The solver's own estimate of what ``case`` will cost it (None if it makes none)."""
+    rec = REGISTRY[name]
     try:
-        fn = _import(target)
+        fn = rec.entry(rec.estimate_attr)
     except SolverUnavailable:
-        return name not in REQUIRED_APPLICABILITY
-    return bool(fn(case))
+        return None
+    return fn(case)
+
+
+def unsupported(name: str, case: Case) -> str | None:
+    """Why solver ``name`` does not handle ``case`` (its ``supports``), None if it does."""
+    rec = REGISTRY[name]
+    reason = rec.entry(rec.supports_attr)(case)
+    return None if reason is None else str(reason)

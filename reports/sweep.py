@@ -22,12 +22,13 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from cases.loader import case_path, load_case, read_toml
+from cases.loader import case_path, load_case, read_toml, value_label
 from cases.model import Case, CaseError
 
 from . import solvers
 from .errors import UserError
-from .runner import CasePlan, UnitOutcome, plan_case, run_unit
+from .plan import CasePlan, Limits, plan_case
+from .units import UnitOutcome, run_unit
 
 
 def parse_value(text: str) -> Any:
@@ -64,10 +65,6 @@ def parse_param(spec: str) -> tuple[str, list[Any]]:
     if not values:
         raise UserError(f"--param {spec!r}: no values")
     return key, values
-
-
-def _fmt(value: Any) -> str:
-    return f"{value:g}" if isinstance(value, float) else str(value)
 
 
 def _toml_value(value: Any) -> str:
@@ -123,8 +120,10 @@ def sweep_points(ref: str | Path, params: list[tuple[str, list[Any]]], *,
             point = dict(overrides or {})
             point.update({key: values[k] for key, values in params})
             (case,) = load_case(path, quick=quick, overrides=point)
-            label = ",".join(f"{lab}={_fmt(values[k])}"
+            label = ",".join(f"{lab}={value_label(values[k])}"
                              for lab, (_, values) in zip(labels, params, strict=True))
+            if any(c.param == label for c in cases):
+                raise UserError(f"--param: repeated sweep point {label}")
             cases.append(case.with_changes(param=label, source=str(source)))
     return cases, {"keys": [key for key, _ in params], "labels": labels,
                    "values": [values for _, values in params]}
@@ -136,10 +135,12 @@ def sweep_dir_name(case: str, params: list[tuple[str, list[Any]]]) -> str:
 
 def plan_sweep(ref: str | Path, params: list[tuple[str, list[Any]]], solver_names: list[str],
                *, quick: bool = False, overrides: dict[str, Any] | None = None,
-               skipped: dict[str, str] | None = None) -> CasePlan:
+               skipped: dict[str, str] | None = None, limits: Limits | None = None
+               ) -> CasePlan:
     cases, sweep = sweep_points(ref, params, quick=quick, overrides=overrides)
     return plan_case(ref, solver_names, quick=quick, overrides=overrides, skipped=skipped,
-                     points=cases, sweep=sweep, dir_name=sweep_dir_name(cases[0].name, params))
+                     points=cases, sweep=sweep, dir_name=sweep_dir_name(cases[0].name, params),
+                     limits=limits)
 
 
 def _thread_env() -> dict[str, str | None]:

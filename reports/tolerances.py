@@ -36,34 +36,10 @@ pair and a dot (``"ic-fem.p_max"``, a quoted TOML key) it applies to that pair o
 Lookup order: pair-specific key in the case, plain key in the case, default of the pair.
 
 Defaults.  Each solver has an *error budget* per metric: the error it is expected to make
-against the exact solution at the resolution the bundled cases use (quick grids included);
+against the exact solution at the resolution the bundled cases use (quick grids
+included), held in its registry record (:mod:`reports.solvers`, where the reasoning is);
 the default tolerance of a pair is the sum of its two budgets, because by the triangle
-inequality |A − B| ≤ |A − exact| + |B − exact|.  The budgets:
-
-- ``ic`` (piecewise-constant tractions on cells; the quick grids resolve a0 with ≈ 4
-  cells): a peak value is a cell average, ≈ (h/a)²/12 below the point value (0.6 % at
-  h/a = 0.27) plus the global discretisation error: 3 % for peak pressure and wear, 2 % for
-  σ_VM,max (an integral of the tractions, smoother than them).  Field norms include the
-  cells next to the contact edge, where p ∝ √(a − r) changes by O(√(h/a)) over one cell:
-  5 % in L2 and 10 % in the max norm for the pressure and wear, 3 % / 8 % for σ_VM
-  planes; tangential tractions 8 % / 15 %, because in partial slip they also have a kink
-  at the stick–slip boundary, resolved to a cell (measured on the 1.6 mm / 81² grid
-  of case 1 at Q/μP = 0.5 and 0.75: 5.8 % and 2.9 % in L2; at Q/μP = 0.25 the slip
-  annulus is 0.7 cell wide and the error 9.2 %, hence the finer cattaneo_mindlin grid; a
-  slip annulus narrower than the FEM's elements needs its own tolerance, set and
-  justified in ``cases/cattaneo_mindlin.toml``).
-  Lengths are quantised to cells: semi-widths and the equivalent contact radius are good
-  to one cell, the stick-zone radius to 1.5 cells (it also depends on the slip
-  threshold), the σ_VM maximum (a broad maximum sampled on a lattice) to 1.5 cells or
-  0.3 a0 (one quick-grid cell is 0.26 a0).
-- ``fem`` (P2 elements, h ≈ a0/8 in the contact, finite block 20 a0, penalty
-  100 E*/h; ``shared/notes/fem-feasibility.md`` measured p_max within 0.4 % and σ_VM,max
-  within 0.3 % on such meshes): the same budgets as ``ic`` except 5 % for wear quantities
-  (penalty contact and the block's compliance act on the wear increments).
-- ``analytic`` (closed forms or converged quadrature, sampled on the solver's grid):
-  0.5 % for scalars, 1 % / 2 % for field norms, 0.5 cell for lengths read off a grid.
-
-Any other solver name gets the ``ic`` budgets.
+inequality |A − B| ≤ |A − exact| + |B − exact|.
 """
 
 from __future__ import annotations
@@ -71,6 +47,8 @@ from __future__ import annotations
 import math
 
 from cases.model import Case, CaseError
+
+from . import solvers
 
 SURFACE_FIELDS = ("p_n", "p_x", "p_y", "wear_a", "wear_b")
 PLANE_FIELDS = {"vm_xz": "xz", "vm_yz": "yz"}
@@ -87,9 +65,6 @@ METRICS: dict[str, tuple[str, ...]] = {
     "vm_max_loc": ("cells", "a0"),
 }
 
-_WEAR = ("wear_a", "wear_b", "w_max", "wear_volume")
-
-
 def tolerance_key(quantity: str, metric: str) -> str:
     """The tolerance key of a (quantity, metric): bare for single-metric quantities."""
     return quantity if len(METRICS[quantity]) == 1 else f"{quantity}_{metric}"
@@ -101,28 +76,9 @@ KEYS: dict[str, tuple[str, str]] = {
 }
 
 
-def _budget_ic(quantity: str, metric: str) -> float:
-    if metric == "rel":
-        return 0.02 if quantity == "vm_max" else 0.03
-    if metric in ("l2", "max"):
-        if quantity in PLANE_FIELDS:
-            return 0.03 if metric == "l2" else 0.08
-        if quantity in ("p_x", "p_y"):
-            return 0.08 if metric == "l2" else 0.15
-        return 0.05 if metric == "l2" else 0.10
-    if metric == "cells":
-        return 1.5 if quantity in ("stick_area", "vm_max_loc") else 1.0
-    return 0.3  # a0: about one cell of the quick grids (h = 0.26 a0)
-
-
 def budget(solver: str, quantity: str, metric: str) -> float:
-    """Expected error of one solver against the exact solution (see the module doc)."""
-    if solver == "analytic":
-        return {"rel": 0.005, "l2": 0.01, "max": 0.02, "cells": 0.5, "a0": 0.02}[metric]
-    value = _budget_ic(quantity, metric)
-    if solver == "fem" and quantity in _WEAR and metric in ("rel", "l2"):
-        value = 0.05
-    return value
+    """Expected error of one solver against the exact solution (its registry record)."""
+    return solvers.record(solver).budget(quantity, metric)
 
 
 def default_tolerance(pair: str, quantity: str, metric: str) -> float:
@@ -152,7 +108,7 @@ def check_keys(case: Case, solver_names: list[str]) -> None:
             if not dash or a not in solver_names or b not in solver_names or a == b:
                 raise CaseError(
                     f"tolerances.{raw}: {pair!r} is not a solver pair "
-                    f"(write e.g. \"ic-fem.{key}\")"
+                    f"(write e.g. \"{'-'.join(solver_names[:2])}.{key}\")"
                 )
         if not math.isfinite(case.tolerances[raw]):
             raise CaseError(f"tolerances.{raw}: must be finite")

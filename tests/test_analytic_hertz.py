@@ -5,9 +5,9 @@ import math
 import numpy as np
 import pytest
 
+from analytic import hertz as hz
+from analytic.quadrature import hertzian_traction_stresses
 from cases import load_case
-from cases.analytic import hertz as hz
-from cases.analytic.quadrature import hertzian_traction_stresses
 
 NU = 0.3
 

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from cases.analytic import hertz as hz
-from cases.analytic import mindlin as md
+from analytic import hertz as hz
+from analytic import mindlin as md
 
 E, NU = 210000.0, 0.3
 G = E / (2 * (1 + NU))

@@ -8,7 +8,7 @@ traction-free surface away from the load, and the resultant force on a plane bel
 import numpy as np
 import pytest
 
-from cases.analytic.pointforce import (
+from analytic.pointforce import (
     boussinesq,
     cerruti,
     cerruti_y,

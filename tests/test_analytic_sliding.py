@@ -3,9 +3,9 @@
 import numpy as np
 import pytest
 
-from cases.analytic import hertz as hz
-from cases.analytic import sliding as sl
-from cases.analytic.pointforce import COMPONENTS, boussinesq, cerruti
+from analytic import hertz as hz
+from analytic import sliding as sl
+from analytic.pointforce import COMPONENTS, boussinesq, cerruti
 
 NU = 0.3
 

@@ -5,11 +5,11 @@ import math
 import numpy as np
 import pytest
 
+from analytic import hertz as hz
+from analytic import mindlin as md
+from analytic import sliding as sl
+from analytic.solver import ASYMPTOTIC_FROM, has_solution, sliding_traction_vector, solve
 from cases import load_case
-from cases.analytic import hertz as hz
-from cases.analytic import mindlin as md
-from cases.analytic import sliding as sl
-from cases.analytic.solver import ASYMPTOTIC_FROM, has_solution, sliding_traction_vector, solve
 from cases.model import Body, CaseError, Friction, Load, SlidingWear
 from cases.result import OPEN, SLIP, STICK, SUMMARY_COLUMNS
 
@@ -244,7 +244,7 @@ def test_body_frames_by_reflection(body):
     # half-space field at (x, y, depth) under the traction (-p_x, -p_y, p_n); body a's are
     # the field under (p_x, p_y, p_n).  The solver instead rotates by π about x; both must
     # agree.  Orthotropic sliding at β = 45° gives p_x, p_y != 0.
-    from cases.analytic.quadrature import hertzian_traction_stresses
+    from analytic.quadrature import hertzian_traction_stresses
 
     base = load_case("sliding_friction", quick=True)[0]
     st = base.stress.__class__(body=body, depth=0.2, nz=3, x0=0.0, y0=0.0)

@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from cases.analytic import hertz as hz
-from cases.analytic import wear
+from analytic import hertz as hz
+from analytic import wear
 
 E, NU, R, P = 210000.0, 0.3, 50.0, 10.2
 I_W = 1.33e-7

@@ -1,33 +1,19 @@
 """End-to-end: the real solvers through `contact-vv run`, `report` and `gate` on the quick
-Hertz case. Each test needs its solver's entry point and is skipped only when that entry
-point does not exist (the solver has not landed)."""
+Hertz case."""
 
 from __future__ import annotations
-
-import importlib
 
 import pandas as pd
 import pytest
 
 from cases.loader import load_case
 from reports.cli import main
-from reports.scales import hertz_scales
-
-
-def entry_point(target: str) -> None:
-    module, _, attr = target.partition(":")
-    try:
-        mod = importlib.import_module(module)
-    except ImportError:
-        pytest.skip(f"{module} has not landed")
-    if not callable(getattr(mod, attr, None)):
-        pytest.skip(f"{module}.{attr} has not landed")
 
 
 @pytest.fixture(scope="module")
 def hertz():
     case = load_case("hertz", quick=True)[0]
-    return case, *hertz_scales(case)
+    return case, *case.hertz_scales
 
 
 def run_one(tmp_path, solver: str) -> pd.Series:
@@ -40,7 +26,6 @@ def run_one(tmp_path, solver: str) -> pd.Series:
 
 
 def test_ic_hertz(tmp_path, hertz):
-    entry_point("halfspace:solve")
     case, a0, p0 = hertz
     row = run_one(tmp_path, "ic")
     assert row["converged"]
@@ -53,7 +38,6 @@ def test_ic_hertz(tmp_path, hertz):
 
 
 def test_analytic_hertz(tmp_path, hertz):
-    entry_point("cases.analytic.solver:solve")
     _, a0, p0 = hertz
     row = run_one(tmp_path, "analytic")
     assert row["p_max"] == pytest.approx(p0, rel=1e-9)
@@ -61,8 +45,6 @@ def test_analytic_hertz(tmp_path, hertz):
 
 
 def test_ic_against_analytic_report_and_gate(tmp_path, capsys):
-    entry_point("halfspace:solve")
-    entry_point("cases.analytic.solver:solve")
     out = tmp_path / "res"
     args = ["run", "hertz", "--quick", "--no-progress", "--solver", "ic,analytic",
             "--out", str(out)]
@@ -80,7 +62,6 @@ def test_ic_against_analytic_report_and_gate(tmp_path, capsys):
 
 
 def test_ic_non_convergence_exits_1(tmp_path, capsys):
-    entry_point("halfspace:solve")
     out = tmp_path / "res"
     assert main(["run", "hertz", "--quick", "--no-progress", "--solver", "ic",
                  "--set", "solver.max_iter=2", "--out", str(out)]) == 1
@@ -90,7 +71,6 @@ def test_ic_non_convergence_exits_1(tmp_path, capsys):
 
 
 def test_ic_is_deterministic(tmp_path):
-    entry_point("halfspace:solve")
     for sub in ("a", "b"):
         assert main(["run", "hertz", "--quick", "--no-progress", "--solver", "ic", "--out",
                      str(tmp_path / sub)]) == 0

@@ -15,14 +15,13 @@ import numpy as np
 
 from cases.model import Case, CaseError
 from cases.result import Plane, RunResult, StepResult, von_mises
-from reports.scales import hertz_scales
 
 ERROR = 0.02  # relative error of the fake "ic" solver
 N_STEPS = 3  # output steps of a sliding_wear case
 
 
 def hertz_step(case: Case, scale: float, k: int) -> StepResult:
-    a0, p0 = hertz_scales(case)
+    a0, p0 = case.hertz_scales
     x, y = case.grid.x, case.grid.y
     r2 = x[:, None] ** 2 + y[None, :] ** 2
     p = scale * p0 * np.sqrt(np.clip(1.0 - r2 / a0**2, 0.0, None))
@@ -72,15 +71,15 @@ def _result(case: Case, solver: str, scale: float) -> RunResult:
                      meta={"note": "fake"}, tables=tables)
 
 
-def solve_exact(case: Case, progress: bool = False) -> RunResult:
+def solve_exact(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     return _result(case, "analytic", 1.0)
 
 
-def solve_ic(case: Case, progress: bool = False) -> RunResult:
+def solve_ic(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     return _result(case, "ic", 1.0 + ERROR)
 
 
-def solve_fem(case: Case, progress: bool = False) -> RunResult:
+def solve_fem(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     """The exact solution with a (tiny) FE mesh per output step in meta["vtu"]."""
     import meshio
 
@@ -93,19 +92,19 @@ def solve_fem(case: Case, progress: bool = False) -> RunResult:
     return result
 
 
-def solve_bad_vtu(case: Case, progress: bool = False) -> RunResult:
+def solve_bad_vtu(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     result = solve_exact(case)
     result.meta["vtu"] = [(0, "not a mesh")]
     return result
 
 
-def solve_slow(case: Case, progress: bool = False) -> RunResult:
+def solve_slow(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     """The fake ic, after a pause (for interruption tests)."""
     time.sleep(float(os.environ.get("FAKE_SLEEP", "0.5")))
-    return solve_ic(case, progress)
+    return solve_ic(case, progress=progress)
 
 
-def solve_streaming(case: Case, progress: bool = False, on_output=None) -> RunResult:
+def solve_streaming(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     """The fake ic with N_STEPS output steps, one every FAKE_SLEEP seconds, each handed to
     ``on_output`` as it is computed (as the half-space wear runs do)."""
     steps = []
@@ -121,23 +120,23 @@ class NotConverged(RuntimeError):
     pass
 
 
-def solve_diverging(case: Case, progress: bool = False) -> RunResult:
+def solve_diverging(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     raise NotConverged("Uzawa iteration did not converge: residual 3.2e-04 > tol 1e-10 "
                        "after 20000 iterations")
 
 
-def solve_edge(case: Case, progress: bool = False) -> RunResult:
+def solve_edge(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     raise CaseError("the contact area reaches the edge of the potential contact grid "
                     "(grid.Lx, grid.Ly too small)")
 
 
-def solve_nan(case: Case, progress: bool = False) -> RunResult:
+def solve_nan(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     result = solve_ic(case)
     result.steps[0].surface["p_n"][0, 0] = np.nan
     return result
 
 
-def solve_partial(case: Case, progress: bool = False) -> RunResult:
+def solve_partial(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     """A closed form that covers the surface only: NaN σ_VM scalars and planes."""
     result = solve_exact(case)
     for step in result.steps:
@@ -148,27 +147,45 @@ def solve_partial(case: Case, progress: bool = False) -> RunResult:
     return result
 
 
-def solve_nan_scalar(case: Case, progress: bool = False) -> RunResult:
+def solve_nan_scalar(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     result = solve_ic(case)
     result.steps[0].scalars["p_max"] = math.nan
     return result
 
 
-def fem_supports(case: Case) -> bool:
-    return case.kind == "static"
+def supports_all(case: Case) -> str | None:
+    return None
 
 
-def has_solution(case: Case) -> bool:
-    return case.friction.mu1 < 0.5
+def fem_supports(case: Case) -> str | None:
+    return None if case.kind == "static" else "does not support this case"
+
+
+def analytic_supports(case: Case) -> str | None:
+    return None if case.friction.mu1 < 0.5 else "no closed-form solution for this case"
+
+
+SUPPORTS = {"analytic": "analytic_supports"}
+
+
+def registry(**targets: str) -> dict:
+    """The solver registry with fakes, e.g. ``registry(ic="solve_ic", analytic="solve_exact")``:
+    the named solvers run this module's functions (analytic with :func:`analytic_supports`,
+    the others :func:`supports_all`); solvers not named are made unavailable."""
+    from dataclasses import replace
+
+    from reports import solvers
+
+    out = {name: replace(rec, package="no_such_module_xyz")
+           for name, rec in solvers.REGISTRY.items()}
+    for name, fn in targets.items():
+        out[name] = replace(out[name], package=__name__, solve_attr=fn,
+                            supports_attr=SUPPORTS.get(name, "supports_all"))
+    return out
 
 
 def use(monkeypatch, **targets: str) -> None:
-    """Point the registry at fakes, e.g. ``use(mp, ic="solve_ic", analytic="solve_exact")``;
-    solvers not named are made unavailable."""
+    """Point the registry at fakes for one test (see :func:`registry`)."""
     from reports import solvers
 
-    for name in list(solvers.REGISTRY):
-        monkeypatch.setitem(solvers.REGISTRY, name, "no_such_module_xyz:solve")
-    for name, fn in targets.items():
-        monkeypatch.setitem(solvers.REGISTRY, name, f"{__name__}:{fn}")
-    monkeypatch.setitem(solvers.APPLICABLE, "analytic", f"{__name__}:has_solution")
+    monkeypatch.setattr(solvers, "REGISTRY", registry(**targets))

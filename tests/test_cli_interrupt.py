@@ -23,9 +23,8 @@ DRIVER = f"""
 import sys
 sys.path[:0] = [{str(ROOT)!r}, {str(TESTS)!r}]
 from reports import solvers
-solvers.REGISTRY.update(ic="test_cli_fakes:IC_SOLVER", fem="no_such_module_xyz:solve",
-                        analytic="test_cli_fakes:solve_exact")
-solvers.APPLICABLE["analytic"] = "test_cli_fakes:has_solution"
+import test_cli_fakes
+solvers.REGISTRY = test_cli_fakes.registry(ic="IC_SOLVER", analytic="solve_exact")
 from reports.cli import main
 sys.exit(main(sys.argv[1:]))
 """
@@ -85,24 +84,44 @@ def test_killed_run_restarts_cleanly(tmp_path, sig, monkeypatch):
     assert main(["gate", "--out", str(out)]) == 0
 
 
+LOCK_HOLDER = """
+import fcntl, os, sys, time
+fh = open(sys.argv[1], "a+")
+fcntl.flock(fh, fcntl.LOCK_EX)
+fh.seek(0); fh.truncate(); fh.write(str(os.getpid())); fh.flush()
+print("locked", flush=True)
+time.sleep(30)
+"""
+
+
 def test_a_live_run_is_not_disturbed(tmp_path, monkeypatch, capsys):
+    """A process holding the case's lock is a live run: a second run of the same case is
+    refused with its pid and touches neither its staging directory nor its result."""
     import test_cli_fakes as fakes
 
     fakes.use(monkeypatch, ic="solve_ic")
     out = tmp_path / "res"
     staging = layout.staging_dir(out, "small")
-    staging.mkdir(parents=True)
-    sleeper = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(30)"])
+    (staging / "fields").mkdir(parents=True)
+    (out / "small").mkdir()
+    (out / "small" / "summary.csv").write_text("kept")
+    holder = subprocess.Popen([sys.executable, "-c", LOCK_HOLDER,
+                               str(layout.lock_file(out, "small"))], stdout=subprocess.PIPE,
+                              text=True)
     try:
-        (staging / ".pid").write_text(str(sleeper.pid))
+        assert holder.stdout.readline().strip() == "locked"
         assert main(["run", "--no-progress", str(write_case(tmp_path)), "--out",
                      str(out)]) == 2
-        assert f"another contact-vv run (pid {sleeper.pid}) is writing" in \
+        assert f"another contact-vv run (pid {holder.pid}) is writing case small" in \
             capsys.readouterr().err
-        assert staging.is_dir()
+        assert (staging / "fields").is_dir()
+        assert (out / "small" / "summary.csv").read_text() == "kept"
     finally:
-        sleeper.kill()
-        sleeper.wait()
+        holder.kill()
+        holder.wait()
+    # the lock dies with its holder: the next run takes over and completes
+    assert main(["run", "--no-progress", str(write_case(tmp_path)), "--out", str(out)]) == 0
+    assert not staging.exists()
 
 
 def test_finished_output_steps_are_kept_and_the_rerun_says_it_restarts(tmp_path, monkeypatch,
@@ -136,3 +155,27 @@ def test_finished_output_steps_are_kept_and_the_rerun_says_it_restarts(tmp_path,
     assert f"({len(kept)} output step file(s) kept)" in err
     assert "restarting small from the beginning" in err
     assert not staging.exists() and (out / "small" / layout.SUMMARY).exists()
+
+
+@pytest.mark.parametrize("stagger", [0.0, 0.3])
+def test_two_runs_of_one_case_started_together(tmp_path, stagger):
+    """Two runs of one case at once: each ends with a complete, consistent case directory
+    or with one clear refusal, never with files of both or a result deleted under it."""
+    case = write_case(tmp_path, SWEEP)
+    out = tmp_path / "res"
+    first = start(case, out, 0.4)
+    time.sleep(stagger)
+    second = start(case, out, 0.4)
+    outcomes = [p.communicate(timeout=120) + (p.returncode,) for p in (first, second)]
+    codes = sorted(code for _, _, code in outcomes)
+    assert codes in ([0, 0], [0, 2]), outcomes
+    for _, err, code in outcomes:
+        assert "Traceback" not in err
+        if code == 2:
+            assert "another contact-vv run (pid" in err and "is writing case small" in err
+    mf = manifest.read(out / "small")  # verifies every file's hash against the manifest
+    files = {p.relative_to(out / "small").as_posix()
+             for p in (out / "small").rglob("*") if p.is_file()}
+    assert files == set(mf["files"]) | {"manifest.json"}
+    assert not layout.staging_dir(out, "small").exists()
+    assert main(["gate", "--out", str(out)]) == 0

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -227,7 +228,8 @@ def test_a_solver_that_does_not_support_a_case_is_skipped(tmp_path, monkeypatch,
     from reports import solvers
 
     fakes.use(monkeypatch, ic="solve_ic", fem="solve_fem")
-    monkeypatch.setitem(solvers.APPLICABLE, "fem", "test_cli_fakes:fem_supports")
+    monkeypatch.setitem(solvers.REGISTRY, "fem",
+                        replace(solvers.REGISTRY["fem"], supports_attr="fem_supports"))
     wear = HERTZ.replace('kind = "static"', 'kind = "sliding_wear"') + \
         "[sliding_wear]\ndistance = 2.0\n"
     out = tmp_path / "res"
@@ -238,17 +240,14 @@ def test_a_solver_that_does_not_support_a_case_is_skipped(tmp_path, monkeypatch,
     assert main(["gate", "--out", str(out)]) == 0
     assert "note: small: solver fem not run (does not support this case)" in \
         capsys.readouterr().out
-    # without a supports() function a numerical solver claims every case
-    monkeypatch.setitem(solvers.APPLICABLE, "fem", "test_cli_fakes:no_such_function")
-    assert solvers.applies("fem", load_case_quick(tmp_path, wear))
-    monkeypatch.setitem(solvers.APPLICABLE, "analytic", "test_cli_fakes:no_such_function")
-    assert not solvers.applies("analytic", load_case_quick(tmp_path, wear))
-
-
-def load_case_quick(tmp_path, text):
-    from cases.loader import load_case
-
-    return load_case(write_case(tmp_path, text, "probe"))[0]
+    # the protocol asks every solver for supports(): without it the solver is unavailable
+    monkeypatch.setitem(solvers.REGISTRY, "fem",
+                        replace(solvers.REGISTRY["fem"], supports_attr="no_such_function"))
+    ok, reason = solvers.available("fem")
+    assert not ok and "has no entry point no_such_function()" in reason
+    capsys.readouterr()
+    assert run(str(write_case(tmp_path, wear)), "--out", str(out)) == 0
+    assert "fem" in manifest.read(out / "small")["skipped"]
 
 
 def test_unwritable_result_fails_cleanly(tmp_path, monkeypatch, capsys):

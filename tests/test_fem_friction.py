@@ -16,6 +16,7 @@ import math
 
 import numpy as np
 import pytest
+from vv_testing import assert_converges
 
 from cases.loader import load_case
 from cases.model import FemSettings, Friction
@@ -39,13 +40,8 @@ def sliding(mu: float, h: float = 0.25, block: float = 10.0):
     return case, solve(case, vtu=False)
 
 
-def hertz(case):
-    a0 = case.hertz_a0
-    return a0, 3 * case.load.P / (2 * math.pi * a0**2)
-
-
 def _check_cattaneo(case, res):
-    a0, p0 = hertz(case)
+    a0, p0 = case.hertz_scales
     mu, P, Q = case.friction.mu1, case.load.P, case.load.Qx
     assert Q / (mu * P) == pytest.approx(0.5)
     h = case.fem.h * a0
@@ -83,19 +79,16 @@ def test_cattaneo_mindlin_stick_radius():
     converging to Mindlin's at the stick–slip cusp (a √(c − r) kink: order 1/2 in the max
     norm; measured 0.215 and 0.142 of μ p0, order 0.6).  The bound 0.2 holds from
     h = a0/8: at a0/4 the kink and the edge lie within single elements."""
-    case, res = cattaneo()
-    err_coarse = _check_cattaneo(case, res)
-    case, res = cattaneo(0.125)
-    err = _check_cattaneo(case, res)
-    assert err < 0.2
-    order = math.log2(err_coarse / err)
-    print(f"max |p_x - q|: h = a0/4 {err_coarse:.3f}, a0/8 {err:.3f}, order {order:.2f}")
-    assert order > 0.35  # converging at about the cusp's order 1/2
+    hs = (0.25, 0.125)
+    errs = [_check_cattaneo(*cattaneo(h)) for h in hs]
+    # converging at about the cusp's order 1/2: order > 0.35, and < 0.2 from a0/8
+    print(assert_converges(hs, errs, min_order=0.35, finest=0.2,
+                           what="max |p_x - q|/(mu p0)"))
 
 
 def test_sliding_low_friction_maximum_below_surface():
     case, res = sliding(0.15)
-    a0, p0 = hertz(case)
+    a0, p0 = case.hertz_scales
     sc = res.steps[0].scalars
     mu, P = case.friction.mu1, case.load.P
     assert sc["Qx"] == pytest.approx(-mu * P, rel=1e-9)  # traction on the sliding pin
@@ -107,7 +100,7 @@ def test_sliding_low_friction_maximum_below_surface():
 
 def test_sliding_high_friction_maximum_at_surface():
     case, res = sliding(0.5)
-    a0, p0 = hertz(case)
+    a0, p0 = case.hertz_scales
     sc = res.steps[0].scalars
     assert sc["vm_max_z"] == 0.0
     # at the trailing side of body b (its traction is +x: tensile σ_xx at x < 0)

@@ -17,6 +17,7 @@ import math
 
 import numpy as np
 import pytest
+from vv_testing import hertz_solution
 
 from cases.loader import load_case
 from cases.model import FemSettings
@@ -86,8 +87,41 @@ def test_wear_profile_is_axisymmetric_and_follows_the_pressure():
     assert w[i0, j0] == pytest.approx(w.max())  # deepest at the centre
     # the worn gap: inside the contact the gap closes on the worn profile
     closed = st.surface["state"] != 0
-    d0 = case.hertz_a0**2 / case.R
+    d0 = hertz_solution(case).delta
     assert np.abs(st.surface["gap"][closed]).max() < 0.02 * d0
+
+
+def test_output_steps_are_handed_over_as_soon_as_computed(monkeypatch):
+    """``on_output`` receives each output step before the load path goes on: when it
+    raises at the second output step, the run stops there (an interrupted run keeps
+    the steps it finished)."""
+    import fem_reference.loading as loading
+
+    case = load_case("pin_on_disk", quick=True, overrides={"friction.mu": 0.0})[0]
+    case = case.with_changes(fem=FemSettings(block=10.0, depth=10.0, h=0.25))
+    solved = []
+    original = loading.solve_increment
+
+    def counting(*args, **kw):
+        solved.append(1)
+        return original(*args, **kw)
+
+    monkeypatch.setattr(loading, "solve_increment", counting)
+
+    class Stop(Exception):
+        pass
+
+    seen = []
+
+    def on_output(step):
+        seen.append((int(step.scalars["step"]), len(solved)))
+        if len(seen) == 2:
+            raise Stop
+
+    with pytest.raises(Stop):
+        solve(case, vtu=False, on_output=on_output)
+    first = round(case.sliding_wear.output_s[0] / case.sliding_wear.step)
+    assert seen == [(0, 1), (first, first + 1)]
 
 
 @pytest.mark.full

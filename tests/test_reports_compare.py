@@ -23,7 +23,6 @@ from reports.compare import (
     interior,
     sample,
 )
-from reports.scales import hertz_scales
 
 README = Path(__file__).resolve().parent.parent / "cases" / "README.md"
 
@@ -130,7 +129,7 @@ def test_pair_metrics_on_different_grids():
     # every 27-cell centre is an 81-cell centre (the 3j+1-th): interpolation is exact
     assert m.loc[("p_max", "rel"), "value"] == pytest.approx(fakes.ERROR, rel=1e-9)
     assert m.loc[("p_n", "l2"), "value"] == pytest.approx(fakes.ERROR, rel=1e-9)
-    a0, _ = hertz_scales(fine)
+    a0, _ = fine.hertz_scales
     # a_x of the two grids differ by less than one coarse cell
     assert 0 <= m.loc[("a_x", "cells"), "value"] <= 1.0
     assert m.loc[("vm_max_loc", "a0"), "value"] == pytest.approx(0.0, abs=1e-12)
@@ -172,7 +171,7 @@ def test_readme_documents_every_key_and_default():
 
 
 def test_readme_documents_every_case_key():
-    from cases.loader import _SCHEMA
+    from cases.schema import SCHEMA as _SCHEMA
 
     text = README.read_text()
     for table, sub in _SCHEMA.items():

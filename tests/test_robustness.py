@@ -14,7 +14,6 @@ from halfspace.wear import _check_wear
 
 
 @pytest.mark.parametrize(("over", "needle"), [
-    ({"grid.nx": 20000, "grid.ny": 20000}, "GB"),  # refused before allocating
     ({"load.P": 0.0}, "load.P = 0.0"),
     ({"friction.mu": -0.1}, "friction.mu1 = -0.1"),
     ({"friction.beta": 400.0}, "friction.beta = 400.0"),
@@ -25,6 +24,18 @@ from halfspace.wear import _check_wear
 def test_bad_values_are_refused_naming_the_key(over, needle):
     with pytest.raises(CaseError, match=needle.replace(".", r"\.")):
         load_case("hertz", overrides=over)
+
+
+def test_a_grid_beyond_the_memory_is_refused_before_allocating():
+    """The planner asks the solver for its estimate (reports.plan.Limits): 20000² cells
+    need ~480 GiB for the half-space operator alone and far more for the 61 stress layers;
+    refused naming the keys that drive the estimate."""
+    from reports.plan import Limits, plan_case
+
+    with pytest.raises(CaseError, match=r"GiB.*reduce stress\.nz, grid\.nx, grid\.ny"):
+        plan_case("hertz", ["ic"], overrides={"grid.nx": 20000, "grid.ny": 20000})
+    with pytest.raises(CaseError, match=r"limit 0\.001 GiB, --max-memory.*stress\.nz"):
+        plan_case("hertz", ["ic"], limits=Limits(memory=2**30 / 1000))
 
 
 FRICTIONLESS = Friction()

@@ -4,9 +4,9 @@ Tractions on the body whose stresses are computed (z >= 0 its depth): the Hertz 
 p = p0 √(1 - r²/a²) and the friction traction q_x = μ p in **+x** (identical materials:
 the pressure stays Hertzian).  The trailing edge, where σ_xx is tensile, is then x = -a.
 For the body that slides in +x over its counterpart, the traction it feels is -μp: use
-``mu -> -mu`` or mirror x (see :mod:`cases.analytic.solver` for the bodies' conventions).
+``mu -> -mu`` or mirror x (see :mod:`analytic.solver` for the bodies' conventions).
 
-The field is :func:`cases.analytic.quadrature.hertzian_traction_stresses` with
+The field is :func:`analytic.quadrature.hertzian_traction_stresses` with
 (p0, μ p0): numerical quadrature of the Boussinesq and Cerruti solutions (accuracy < 1e-8 p0 for
 z > 1e-4 a with the default rules, < 1e-5 p0 down to z = 1e-6 a; the surface z = 0 is the
 exact principal-value limit).
@@ -39,7 +39,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq, minimize, minimize_scalar
 
-from ..result import von_mises
+from cases.result import von_mises
+
 from .pointforce import COMPONENTS
 from .quadrature import hertzian_traction_stresses
 

@@ -9,5 +9,11 @@ against it).  Modules:
 - :mod:`.mindlin` — Cattaneo–Mindlin partial slip, tangential compliance, fretting regime;
 - :mod:`.sliding` — the sliding sphere: stresses, σ_VM maximum vs μ, surface jump;
 - :mod:`.wear` — Argatov (2011) and Hegadekatte (2008) pin wear, orthotropic i_w(θ);
-- :mod:`.solver` — ``solve(case)`` / ``has_solution(case)``: the "analytic" solver.
+- :mod:`.solver` — the "analytic" solver: ``solve(case, *, progress, on_output)`` and
+  ``supports(case)`` (None, or why the case has no closed form), exported here as the
+  solver protocol of :mod:`reports.solvers`.
 """
+
+from .solver import solve, supports
+
+__all__ = ["solve", "supports"]

@@ -8,7 +8,7 @@ z >= 0 its depth) is
 with ``t_n`` compressive (pressing in +z) and ``(t_x, t_y)`` the tangential traction on the
 body.  The stress at a field point is Σ_j ∫∫ T^j(x - x', y - y', z) t_j(x', y') dA'
 (formulation Eq. 24-25) with the Boussinesq and Cerruti kernels of
-:mod:`cases.analytic.pointforce`.  Superposition of such distributions gives the Hertz
+:mod:`analytic.pointforce`.  Superposition of such distributions gives the Hertz
 (Johnson 1985 §3.4), sliding-sphere (Hamilton 1983) and Cattaneo–Mindlin (Johnson §7.2)
 tractions.
 
@@ -25,7 +25,7 @@ wide).  Accuracy of the default rule (64 rays, 2 × 32 radial nodes), against a 
 reference: < 1e-10 p0 for z >= 0.01 a, < 1e-8 p0 down to z = 1e-4 a, 3e-9 p0 at 1e-6 a.
 
 At z = 0 above the contact, the kernels are O(1/r²) and the integral is a principal value
-plus local terms (:func:`cases.analytic.pointforce.surface_limit_coefficients`):
+plus local terms (:func:`analytic.pointforce.surface_limit_coefficients`):
 
     σ(X, Y, 0) = ∮ f(φ) [s0 ln r2(φ) + ∫_0^{r2} (s - s0)/r dr] dφ + c · s0,
 
@@ -159,7 +159,7 @@ def hertzian_traction_stresses(x, y, z, a: float, p0: float = 0.0, qx0: float = 
     ``x, y, z`` broadcast to a common shape (z >= 0 the depth); returns a dict of the six
     components ``sxx, syy, szz, sxy, sxz, syz`` (tensile positive, x/y/z axes with z into
     the body).  With ``p0`` the Hertz peak pressure and ``qx0 = μ p0`` this is the field of
-    a sphere sliding in full slip (Hamilton 1983); see :mod:`cases.analytic.sliding`.
+    a sphere sliding in full slip (Hamilton 1983); see :mod:`analytic.sliding`.
     """
     X, Y, Z = np.broadcast_arrays(np.asarray(x, float), np.asarray(y, float),
                                   np.asarray(z, float))

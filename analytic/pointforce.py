@@ -1,6 +1,6 @@
 """Stresses of a point force on the surface of an elastic half-space (Johnson 1985, §3.2).
 
-Conventions (``shared/paper/formulation.md``, erratum 9): z >= 0 is the depth into the
+Conventions (``docs/formulation.md``, erratum 9): z >= 0 is the depth into the
 body, the force acts at the surface origin, the arguments are the field point *relative
 to the load point* (x_field - x_load), tensile stress is positive.
 

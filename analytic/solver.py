@@ -9,10 +9,10 @@ Covered (:func:`has_solution`):
   formulation Eq. 13 (d the sliding direction of a relative to b): -μ p d for isotropic
   friction, and also exact for orthotropic friction since the direction is uniform.
 - ``static``, ``load.Qx/Qy`` or ``load.shift_x/shift_y``: Cattaneo–Mindlin (isotropic
-  friction, identical materials), :mod:`cases.analytic.mindlin`; a shift beyond δ* is full
+  friction, identical materials), :mod:`analytic.mindlin`; a shift beyond δ* is full
   sliding.
 - ``sliding_wear``: Argatov (2011) / Hegadekatte (2008) scalars per output distance
-  (:mod:`cases.analytic.wear`); no fields (the reference is asymptotic).
+  (:mod:`analytic.wear`); no fields (the reference is asymptotic).
 
 Not covered (:class:`~cases.model.CaseError` from :func:`solve`): fretting, dissimilar
 materials with friction, Cattaneo–Mindlin with orthotropic friction.
@@ -34,19 +34,30 @@ with s = grid.x, 'yz' at x = stress.x0 with s = grid.y, z = stress.z.
   at its trailing edge x = -a.
 
 The normal part of the planes is the Hamilton–Goodman closed form
-(:func:`cases.analytic.hertz.full_field`), the tangential part the point-force quadrature
-(:mod:`cases.analytic.quadrature`); both are tested against each other.
+(:func:`analytic.hertz.full_field`), the tangential part the point-force quadrature
+(:mod:`analytic.quadrature`); both are tested against each other.
 """
 
 from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 
 import numpy as np
 
-from ..model import Case, CaseError
-from ..result import OPEN, SLIP, STICK, Plane, RunResult, StepResult, von_mises
+from cases.model import Case, CaseError
+from cases.result import (
+    OPEN,
+    SLIP,
+    STICK,
+    Plane,
+    RunResult,
+    StepResult,
+    vm_max_location,
+    von_mises,
+)
+
 from . import hertz as hz
 from . import mindlin, wear
 from .pointforce import COMPONENTS
@@ -61,8 +72,13 @@ QUAD = dict(n_phi=48, n_r=24)
 # ------------------------------------------------------------------ applicability
 
 
+def supports(case: Case) -> str | None:
+    """None when the case has an analytic solution here, else why not."""
+    reason = _no_solution_reason(case)
+    return None if reason is None else f"no closed-form solution for this case: {reason}"
+
+
 def _no_solution_reason(case: Case) -> str | None:
-    """Why the case has no analytic solution here, or None if it has one."""
     f = case.friction
     frictional = f.mu1 > 0.0 or f.mu2 > 0.0
     if case.kind == "fretting":
@@ -85,7 +101,7 @@ def _no_solution_reason(case: Case) -> str | None:
 
 def has_solution(case: Case) -> bool:
     """Whether :func:`solve` has an analytic reference for ``case``."""
-    return _no_solution_reason(case) is None
+    return supports(case) is None
 
 
 # ------------------------------------------------------------------ pieces
@@ -225,13 +241,8 @@ def _planes(case: Case, h: hz.Hertz, terms) -> dict[str, Plane]:
 
 
 def _vm_scalars(case: Case, planes: dict[str, Plane]) -> dict[str, float]:
-    best = max(planes.items(), key=lambda kv: kv[1].vm_max()[0])
-    vm, s_at, z_at = best[1].vm_max()
-    if best[0] == "xz":
-        x, y = s_at, case.stress.y0
-    else:
-        x, y = case.stress.x0, s_at
-    return dict(vm_max=vm, vm_max_x=x, vm_max_y=y, vm_max_z=z_at)
+    vm, x, y, z = vm_max_location(planes, case.stress.x0, case.stress.y0)
+    return dict(vm_max=vm, vm_max_x=x, vm_max_y=y, vm_max_z=z)
 
 
 def _check_grid(case: Case, a: float, what: str) -> None:
@@ -281,7 +292,7 @@ def wear_steps(case: Case) -> list[StepResult]:
     Step numbers and distances follow the incremental runs: s in output_s plus 0 and the
     total distance, step = round(s / sliding_wear.step).  s = 0 is the exact Hertz state
     (p_max = p0); for s > 0 p_max is Argatov's steady-state P/(π a²), w_max the
-    Archard-consistent depth √(a⁴ - a0⁴)/(2R) (see :mod:`cases.analytic.wear`), these
+    Archard-consistent depth √(a⁴ - a0⁴)/(2R) (see :mod:`analytic.wear`), these
     three only from ``ASYMPTOTIC_FROM`` s_c on (NaN before: no reference), with
     i_w = i_w,a(θ) + i_w,b(θ) (the gap sees both bodies' wear; the disk's is 0 in case 4).
     """
@@ -320,13 +331,17 @@ def wear_steps(case: Case) -> list[StepResult]:
     return steps
 
 
-def solve(case: Case, progress: bool = False) -> RunResult:
-    """The analytic result of ``case``; :class:`CaseError` if it has no analytic solution."""
+def solve(case: Case, *, progress: bool = False,
+          on_output: Callable[[StepResult], None] | None = None) -> RunResult:
+    """The analytic result of ``case``; :class:`CaseError` if it has no analytic solution.
+    ``on_output`` receives each output step."""
     reason = _no_solution_reason(case)
     if reason is not None:
         label = f"{case.name} ({case.param})" if case.param else case.name
         raise CaseError(f"no analytic solution for {label}: {reason}")
     steps = wear_steps(case) if case.kind == "sliding_wear" else [static_step(case)]
+    for step in steps if on_output is not None else ():
+        on_output(step)
     return RunResult(case=case.name, solver=SOLVER_NAME, param=case.param, steps=steps,
                      meta={"references": _references(case)})
 

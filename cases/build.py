@@ -1,0 +1,196 @@
+"""A validated :class:`~cases.model.Case` from a type-checked case table: every value
+in its range, every combination consistent, each error naming its key."""
+
+from __future__ import annotations
+
+import math
+
+from .model import (
+    Body,
+    Case,
+    CaseError,
+    FemSettings,
+    Fretting,
+    Friction,
+    Grid,
+    Load,
+    SlidingWear,
+    Solver,
+    StressOutput,
+    check_positive,
+)
+
+KINDS = ("static", "sliding_wear", "fretting")
+
+
+def _body(d: dict, key: str) -> Body:
+    if "E" not in d or "nu" not in d:
+        raise CaseError(f"materials.{key} needs E and nu")
+    body = Body(E=float(d["E"]), nu=float(d["nu"]), i1=float(d.get("i1", 0.0)),
+                i2=float(d.get("i2", d.get("i1", 0.0))))
+    check_positive(body.E, f"materials.{key}.E")
+    if not -1.0 < body.nu < 0.5:
+        raise CaseError(f"materials.{key}.nu = {body.nu}: Poisson's ratio must lie in (-1, 0.5)")
+    check_positive(body.i1, f"materials.{key}.i1", allow_zero=True)
+    check_positive(body.i2, f"materials.{key}.i2", allow_zero=True)
+    return body
+
+
+def _friction(d: dict) -> Friction:
+    if "mu" in d and ("mu1" in d or "mu2" in d):
+        raise CaseError("friction: give either mu (isotropic) or mu1/mu2, not both")
+    mu1 = float(d.get("mu", d.get("mu1", 0.0)))
+    mu2 = float(d.get("mu", d.get("mu2", mu1)))
+    beta = float(d.get("beta", 0.0))
+    check_positive(mu1, "friction.mu1", allow_zero=True)
+    check_positive(mu2, "friction.mu2", allow_zero=True)
+    if (mu1 == 0) != (mu2 == 0):
+        raise CaseError("friction: mu1 and mu2 must be both zero or both positive")
+    if not -360.0 <= beta <= 360.0:
+        raise CaseError(f"friction.beta = {beta}: must lie in [-360, 360] degrees")
+    return Friction(mu1=mu1, mu2=mu2, beta=beta)
+
+
+def _grid(d: dict) -> Grid:
+    for key in ("Lx", "nx"):
+        if key not in d:
+            raise CaseError(f"grid.{key} is required")
+    g = Grid(Lx=float(d["Lx"]), Ly=float(d.get("Ly", d["Lx"])), nx=int(d["nx"]),
+             ny=int(d.get("ny", d["nx"])))
+    check_positive(g.Lx, "grid.Lx")
+    check_positive(g.Ly, "grid.Ly")
+    for key, n in (("grid.nx", g.nx), ("grid.ny", g.ny)):
+        if n < 4:
+            raise CaseError(f"{key} = {n}: need at least 4 cells")
+    return g  # what the grid costs each solver is its own estimate (reports.plan.Limits)
+
+
+def _load(d: dict) -> Load:
+    load = Load(**{k: d[k] for k in d})
+    if (load.P is None) == (load.approach is None):
+        raise CaseError("load: give exactly one of load.P (N) and load.approach (mm)")
+    if load.P is not None:
+        check_positive(load.P, "load.P")
+    if load.approach is not None:
+        check_positive(load.approach, "load.approach")
+    has_q = load.Qx is not None or load.Qy is not None
+    has_s = load.shift_x is not None or load.shift_y is not None
+    if sum((has_q, has_s, load.sliding)) > 1:
+        raise CaseError("load: give at most one of Qx/Qy, shift_x/shift_y and sliding = true")
+    return load
+
+
+def _one_of(value, allowed: tuple, key: str) -> None:
+    if value not in allowed:
+        raise CaseError(f"{key} = {value!r}: must be one of {', '.join(map(repr, allowed))}")
+
+
+def _at_least(value: int, low: int, key: str) -> None:
+    if value < low:
+        raise CaseError(f"{key} = {value}: must be >= {low}")
+
+
+def _checked(table: str, cls, d: dict, *, choices: dict | None = None,
+             positive: tuple[str, ...] = (), minimum: dict | None = None):
+    """``cls(**d)`` with its values checked: ``choices`` {key: allowed}, ``positive``
+    keys, ``minimum`` {key: lowest integer}; errors name ``table.key``."""
+    obj = cls(**d)
+    for key, allowed in (choices or {}).items():
+        _one_of(getattr(obj, key), allowed, f"{table}.{key}")
+    for key in positive:
+        check_positive(getattr(obj, key), f"{table}.{key}")
+    for key, low in (minimum or {}).items():
+        _at_least(getattr(obj, key), low, f"{table}.{key}")
+    return obj
+
+
+def _sliding_wear(d: dict, load: Load) -> SlidingWear:
+    d = dict(d, output_s=tuple(float(v) for v in d.get("output_s", ())))
+    sliding_wear = _checked("sliding_wear", SlidingWear, d, positive=("step", "distance"))
+    if load.P is None:
+        raise CaseError("sliding_wear needs load control (load.P)")
+    return sliding_wear
+
+
+def _fretting(d: dict, friction: Friction) -> Fretting:
+    d = dict(d, output_cycles=tuple(int(v) for v in d.get("output_cycles", ())))
+    fretting = _checked("fretting", Fretting, d, positive=("amplitude", "jump"),
+                        minimum={"steps_per_cycle": 4, "cycles": 1})
+    if friction.mu1 == 0:
+        raise CaseError("fretting needs friction (friction.mu or mu1/mu2 > 0)")
+    _on_jump_grid(fretting.cycles, fretting.jump, "fretting.cycles")
+    for k, c in enumerate(fretting.output_cycles):
+        key = f"fretting.output_cycles[{k}]"
+        if not 0 < c <= fretting.cycles:
+            raise CaseError(f"{key} = {c}: must lie in (0, fretting.cycles = "
+                            f"{fretting.cycles}]")
+        _on_jump_grid(c, fretting.jump, key)
+    if len(set(fretting.output_cycles)) < len(fretting.output_cycles):
+        raise CaseError(f"fretting.output_cycles = {list(fretting.output_cycles)}: repeated "
+                        "cycle")
+    return fretting
+
+
+def _on_jump_grid(cycles: int, jump: float, key: str) -> None:
+    """Each simulated cycle stands for ``jump`` cycles: a cycle count the run reports
+    must be a whole number of simulated cycles (else its label and its wear differ)."""
+    n = cycles / jump
+    if n < 1 or abs(n - round(n)) > 1e-9 * n:
+        low, high = max(math.floor(n), 1) * jump, max(math.ceil(n), 1) * jump
+        raise CaseError(f"{key} = {cycles}: not a whole number of simulated cycles of "
+                        f"fretting.jump = {jump:g} cycles (nearest: {low:g} or {high:g})")
+
+
+def _tolerances(d: dict) -> dict[str, float]:
+    tolerances = {}
+    for key, value in d.items():
+        if isinstance(value, bool) or not isinstance(value, int | float) or value <= 0:
+            raise CaseError(f"tolerances.{key} = {value!r}: must be a positive number")
+        tolerances[key] = float(value)
+    return tolerances
+
+
+def build(data: dict, *, name: str, source: str, param: str) -> Case:
+    kind = data.get("kind", "static")
+    _one_of(kind, KINDS, "kind")
+    mats = data.get("materials", {})
+    for key in ("a", "b"):
+        if key not in mats:
+            raise CaseError(f"materials.{key} is required")
+    if "R" not in data.get("geometry", {}):
+        raise CaseError("geometry.R is required")
+    R = float(data["geometry"]["R"])
+    check_positive(R, "geometry.R")
+    if "grid" not in data:
+        raise CaseError("[grid] is required")
+    if "load" not in data:
+        raise CaseError("[load] is required")
+    friction = _friction(data.get("friction", {}))
+    load = _load(data["load"])
+    if load.tangential_mode == "load" and friction.mu1 == 0:
+        raise CaseError("load.Qx/Qy need friction (friction.mu or mu1/mu2 > 0)")
+    return Case(
+        name=name,
+        kind=kind,
+        a=_body(mats["a"], "a"),
+        b=_body(mats["b"], "b"),
+        R=R,
+        grid=_grid(data["grid"]),
+        friction=friction,
+        load=load,
+        stress=_checked("stress", StressOutput, data.get("stress", {}),
+                        choices={"body": ("a", "b")}, positive=("depth",),
+                        minimum={"nz": 2}),
+        solver=_checked("solver", Solver, data.get("solver", {}),
+                        choices={"method": ("cg", "uzawa")}, positive=("tol",),
+                        minimum={"max_iter": 1}),
+        sliding_wear=_sliding_wear(data.get("sliding_wear", {}), load)
+        if kind == "sliding_wear" else None,
+        fretting=_fretting(data.get("fretting", {}), friction) if kind == "fretting" else None,
+        fem=_checked("fem", FemSettings, data.get("fem", {}), choices={"order": (1, 2)},
+                     positive=("block", "depth", "h", "penalty")),
+        tolerances=_tolerances(data.get("tolerances", {})),
+        description=data.get("description", ""),
+        param=param,
+        source=source,
+    )

@@ -1,0 +1,192 @@
+"""The load path of a run: static load steps and sliding-wear steps.
+
+- static cases: the normal load (or approach) first — in one step for identical
+  materials (no normal–tangential coupling), in 5 increments otherwise — then a
+  tangential load (Qx, Qy) or shift in 5 increments with the friction history (return
+  map); full sliding (``load.sliding``) prescribes the slip direction instead (Eq. 13).
+  One output step (``step = 0``) with the final state.
+- ``sliding_wear`` (pin-on-disk): constant load; step k slides every contact point by
+  ``sliding_wear.step`` along ``load.slide_angle`` and adds the wear of Eq. 23 to each
+  body (backward Euler, as step IV of §3.4).  The condensed stiffness is reused for every
+  step.  Output steps: ``step = round(s / sliding_wear.step)`` for s = 0, the
+  ``output_s`` distances and the total distance (every step if ``output_s`` is empty).
+
+Each path is a generator of :class:`~fem_reference.run.OutputState`: it yields an output
+step as soon as it has converged, and goes on when the caller asks for the next one.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import numpy as np
+
+from cases.model import Case, CaseError, SlidingWear
+
+from .contact import Control, Evaluation, Solution, evaluate, newton
+from .model import FemError, FemUnsupported, slide_direction, wear_compliances
+from .run import OutputState, Run
+
+N_NORMAL_DISSIMILAR = 5  # normal load increments of dissimilar materials
+N_TANGENTIAL = 5  # tangential load (or shift) increments
+
+
+def load_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
+    """The output states of the case's load path (static or sliding wear)."""
+    kind = run.model.case.kind
+    if kind == "static":
+        return static_path(run, progress)
+    if kind == "sliding_wear":
+        return sliding_wear_path(run, progress)
+    raise FemUnsupported(f"kind {kind!r} is not supported by fem_reference")
+
+
+def control(run: Run, P_frac: float = 1.0, Q_frac: float = 0.0) -> Control:
+    """The control of a solve at fractions of the case's normal and tangential loads
+    (approach and shift likewise); the state's δ and g_t,o where they are unknowns."""
+    m = run.model
+    load = m.case.load
+    P = None if load.P is None else load.P * P_frac
+    delta = run.delta if load.P is not None else load.approach * P_frac
+    Q: tuple = (None, None)
+    D = run.D.copy()
+    if load.tangential_mode == "load" and Q_frac > 0:
+        qx, qy = (load.Qx or 0.0) * Q_frac, (load.Qy or 0.0) * Q_frac
+        Q = (qx, None) if m.shape == "half" else (qx, qy)
+    elif load.tangential_mode == "shift":
+        D = np.array([load.shift_x or 0.0, load.shift_y or 0.0]) * Q_frac
+    return Control(P=P, delta=delta, D=D, Q=Q, sym=m.sym.factor)
+
+
+def solve_increment(run: Run, ctrl: Control, cw: float = 0.0) -> tuple[Solution, Evaluation]:
+    """Solve the contact under ``ctrl`` (wear compliance ``cw``) from the current state,
+    make the solution the run's state and evaluate the probes on it.
+
+    Raises :class:`~fem_reference.model.FemError` when the contact reaches the edge of
+    the FE contact zone (1.5 elements from r_c).
+    """
+    m = run.model
+    sol = newton(m.Krel, m.Crel, m.law, run.quad, ctrl, run.u, cw=cw,
+                 tol=max(1e-9, 10 * m.case.solver.tol))
+    ev = sol.ev
+    active = ev.pn > 0
+    if active.any():
+        rad = np.hypot(run.quad.xy[active, 0], run.quad.xy[active, 1]).max()
+        if rad > m.surface.r_c - 1.5 * m.h:
+            raise FemError(
+                f"the contact (radius {rad:.4g} mm) reached the edge of the FE contact zone "
+                f"(r_c = {m.surface.r_c:.4g} mm)"
+            )
+    run.u, run.delta, run.D = sol.u, sol.delta, sol.D.copy()
+    probe_ev = evaluate(m.law, run.probes, run.u, run.delta, run.D, cw)
+    return sol, probe_ev
+
+
+def commit(run: Run, sol: Solution, probe_ev: Evaluation) -> None:
+    """Make the tractions and tangential gaps of a converged solve the friction history."""
+    for pts, ev in ((run.quad, sol.ev), (run.probes, probe_ev)):
+        pts.t_old = ev.t.copy()
+        pts.gt_old = ev.gt.copy()
+
+
+def add_wear(run: Run, sol: Solution, probe_ev: Evaluation, ca: float, cb: float) -> None:
+    """Add the wear of a sliding step, Δw = p_n ‖Δg‖_i, to bodies a and b."""
+    for pts, ev in ((run.quad, sol.ev), (run.probes, probe_ev)):
+        pts.wear_a = pts.wear_a + ev.pn * ca
+        pts.wear_b = pts.wear_b + ev.pn * cb
+
+
+def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
+    """Normal, then tangential loading; one output state (step 0) at the end."""
+    m = run.model
+    case = m.case
+    mode = case.load.tangential_mode
+    iters = 0
+    if m.law_mode != "friction":
+        sol, pev = solve_increment(run, control(run))
+        iters += sol.iterations
+        slip = np.zeros((run.probes.n, 2))
+        if m.law_mode == "sliding":
+            slip[:] = slide_direction(case)
+        yield OutputState(step=0, sol=sol, probe_ev=pev, slip=slip, iterations=iters)
+        return
+    n_normal = 1 if case.identical_materials else N_NORMAL_DISSIMILAR
+    n_tangential = N_TANGENTIAL if mode in ("load", "shift") else 0
+    with _bar(progress, n_normal + n_tangential, case) as bar:
+        for i in range(1, n_normal + 1):
+            sol, pev = solve_increment(run, control(run, P_frac=i / n_normal))
+            commit(run, sol, pev)
+            iters += sol.iterations
+            bar.update()
+        gt_ref = pev.gt.copy()
+        for i in range(1, n_tangential + 1):
+            sol, pev = solve_increment(run, control(run, Q_frac=i / N_TANGENTIAL))
+            commit(run, sol, pev)
+            iters += sol.iterations
+            bar.update()
+    slip = pev.gt - gt_ref
+    yield OutputState(step=0, sol=sol, probe_ev=pev, slip=slip, iterations=iters)
+
+
+def sliding_wear_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
+    """Sliding steps at constant load with wear; an output state per output step."""
+    case = run.model.case
+    sw = case.sliding_wear
+    n = sliding_steps(sw)
+    dg = sw.step * slide_direction(case)
+    ca, cb = wear_compliances(case, dg)
+    wanted = output_steps(sw, n)
+    with _bar(progress, n + 1, case) as bar:
+        for k in range(n + 1):
+            cw = 0.0 if k == 0 else ca + cb
+            sol, pev = solve_increment(run, control(run), cw=cw)
+            if k > 0:
+                add_wear(run, sol, pev, ca, cb)
+            commit(run, sol, pev)
+            bar.update()
+            if k in wanted:
+                slip = np.zeros((run.probes.n, 2))
+                if k > 0:
+                    slip[:] = dg
+                yield OutputState(step=k, sol=sol, probe_ev=pev, slip=slip,
+                                  iterations=sol.iterations, s=k * sw.step)
+
+
+def sliding_steps(sw: SlidingWear) -> int:
+    """The number of sliding steps; raises CaseError unless the distance is a whole
+    number of steps."""
+    n = int(round(sw.distance / sw.step))
+    if n < 1 or abs(n * sw.step - sw.distance) > 1e-9 * sw.distance:
+        raise CaseError(
+            f"sliding_wear.distance = {sw.distance} is not a whole number of steps "
+            f"of sliding_wear.step = {sw.step}"
+        )
+    return n
+
+
+def output_steps(sw: SlidingWear, n: int) -> set[int]:
+    """The output steps of ``n`` sliding steps: round(s / step) for s = 0, the
+    ``output_s`` distances and the total distance; every step without ``output_s``."""
+    if sw.output_s:
+        return {int(round(v / sw.step)) for v in sw.output_s} | {0, n}
+    return set(range(n + 1))
+
+
+class _NoBar:
+    def __enter__(self) -> _NoBar:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        pass
+
+    def update(self, n: int = 1) -> None:
+        pass
+
+
+def _bar(progress: bool, total: int, case: Case):
+    """A tqdm progress bar of ``total`` steps (a context manager), or a silent stand-in."""
+    if not progress:
+        return _NoBar()
+    from tqdm import tqdm
+
+    return tqdm(total=total, desc=f"fem {case.name} {case.param}".strip(), unit="step")

@@ -1,0 +1,210 @@
+"""The output of one step: surface fields, line and axis tables, stress planes, scalars,
+the FE mesh.
+
+Surface fields on the case grid (cell centres; a quarter/half model is mirrored, and
+components odd under a mirror vanish on the mirror plane):
+``p_n`` is the L2 projection of the Gauss-point penalty pressure on the P2 surface space,
+limited to the range of the Gauss-point values around each point (see
+:meth:`fem_reference.recovery.TractionRecovery.p2`: the projection rings where the
+traction falls to zero inside a facet, at the edge of a worn flat), ``p_x, p_y`` the
+limited L2 projections of the tangential tractions on P1
+(:meth:`fem_reference.recovery.TractionRecovery.p1`: the Gauss-point values oscillate
+at the stick–slip boundary), all zero outside the contact; ``gap`` from the full FE
+displacements;
+``state``: a cell is closed inside the contact boundary r(θ), the outermost point with
+a gap below ``GAP_TOL`` × δ0 along rays from the centre (robust against the penalty:
+see :func:`fem_reference.contact_zone.contact_states`), stick or slip by the return map
+evaluated at the cell centre with its own history; ``wear_a/b`` likewise; ``slip_x/y``
+the relative tangential displacement increment of the step (tangential loading: since
+the end of the normal loading; static full sliding: the unit slip direction).
+
+Scalars: ``P, Qx, Qy`` the resultants of the Gauss-point tractions; ``contact_area`` the
+area inside r(θ), ``stick_area`` the Gauss-point integral of the stick states,
+``slip_area`` the rest; ``a_x, a_y`` half the closed length of the lines through the
+centre; ``p_max`` the largest nodal value of the limited projected pressure; ``vm_max`` and its
+location over both planes (the plane samples, :func:`cases.result.vm_max_location`);
+``wall_s`` the time since ``solve`` started.  Extra: ``approach`` (δ), ``shift_x/y``
+(g_t,o), ``P_reaction`` (the support reaction of the block: global equilibrium),
+``vm_axis_max``/``vm_axis_z`` (the on-axis σ_VM maximum and its depth from a
+least-squares cubic, :func:`fem_reference.stress_planes.axis_peak`).
+
+Tables: ``"axis/<step>"`` the stresses on the load axis (x0, y0) at 8x the plane
+resolution in depth; ``"line_x/<step>"`` and ``"line_y/<step>"`` the projected
+tractions, the gap and the states along the lines through the centre.  Mesh: the FE
+fields of the reported body (:func:`fem_reference.vtu.fields_mesh`).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import meshio
+import numpy as np
+
+from cases.model import Body
+from cases.result import OPEN, STICK, Plane, StepResult, vm_max_location
+
+from .contact import Evaluation
+from .contact_zone import ContactZone, contact_zone
+from .run import OutputState, Run
+from .stress_planes import AXIS_FIT_WINDOW, axis_peak, stress_planes
+from .vtu import fields_mesh
+
+Table = dict[str, np.ndarray]
+
+
+@dataclass(frozen=True)
+class StepOutput:
+    """One output step: the common step result, the solver tables of the step
+    (``"line_x/<step>"``, ``"line_y/<step>"``, ``"axis/<step>"``) and the FE mesh of the
+    reported body (None without ``vtu``)."""
+
+    result: StepResult
+    tables: dict[str, Table]
+    mesh: meshio.Mesh | None
+
+
+@dataclass(frozen=True)
+class Tractions:
+    """Recovered tractions on body a: nodal pressure, and at the probes the pressure and
+    the tangential tractions in the reported frame (not limited to the contact)."""
+
+    pn_nodes: np.ndarray
+    pn: np.ndarray
+    px: np.ndarray
+    py: np.ndarray
+
+
+def step_output(run: Run, out: OutputState, *, t0: float, vtu: bool = True) -> StepOutput:
+    """Recover the output of the converged state ``out`` of ``run`` (``t0``: the start
+    of the run for ``wall_s``)."""
+    m = run.model
+    case = m.case
+    ev = out.sol.ev
+    ua, ub = body_displacements(run, ev)
+    tractions = recover_tractions(run, ev)
+    zone = contact_zone(run.sampling.layout, run.sampling.mapped, out.probe_ev,
+                        run.probes.inside, run.gap_tol)
+    surface = surface_fields(run, out, zone, tractions, probe_gap(run, ua, ub))
+    tables = line_tables(run, out, zone, tractions)
+    u_body, mat = (ua, case.a) if case.stress.body == "a" else (ub, case.b)
+    planes, axis = stress_planes(m, run.locator, u_body, mat.nu, mat.E)
+    tables[f"axis/{out.step}"] = axis
+    scalars = step_scalars(run, out, zone, tractions, planes, axis)
+    scalars.update(_body_scalars(run, u_body, mat, t0))
+    mesh = fields_mesh(m.space, u_body, mat.nu, mat.E) if vtu else None
+    g = case.grid
+    result = StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(), surface=surface,
+                        planes=planes)
+    return StepOutput(result=result, tables=tables, mesh=mesh)
+
+
+def body_displacements(run: Run, ev: Evaluation) -> tuple[np.ndarray, np.ndarray]:
+    """Full FE displacements of bodies a and b (block frames) under the Gauss-point
+    tractions of ``ev``."""
+    w = run.quad.w
+    wt = np.concatenate([w * ev.t[:, 0], w * ev.t[:, 1], w * ev.pn])
+    return run.model.body_displacements(run.G_all.T @ wt)
+
+
+def probe_gap(run: Run, ua: np.ndarray, ub: np.ndarray) -> np.ndarray:
+    """The normal gap g_n = h + w_a + w_b − δ + u_n at the probes from the full FE
+    displacements of both bodies."""
+    nodes = run.model.top.nodes
+    Ntop = run.sampling.Ntop
+    uza = Ntop @ ua.reshape(-1, 3)[nodes, 2]
+    uzb = Ntop @ ub.reshape(-1, 3)[nodes, 2]
+    pr = run.probes
+    return pr.h + pr.wear_a + pr.wear_b - run.delta + (-uza - uzb)
+
+
+def recover_tractions(run: Run, ev: Evaluation) -> Tractions:
+    """Limited projections of the Gauss-point tractions of ``ev`` (p_n on P2, p_t on P1)."""
+    rec, sampling = run.recovery, run.sampling
+    pn_nodes, pn_probe = rec.p2(ev.pn)
+    _, tx_probe = rec.p1(ev.t[:, 0])
+    _, ty_probe = rec.p1(ev.t[:, 1])
+    return Tractions(pn_nodes=pn_nodes, pn=pn_probe, px=sampling.sx * tx_probe,
+                     py=sampling.sy * ty_probe)
+
+
+def surface_fields(run: Run, out: OutputState, zone: ContactZone, tractions: Tractions,
+                   gap: np.ndarray) -> dict[str, np.ndarray]:
+    """The surface fields on the case grid (tractions and slip zero outside the contact)."""
+    sampling = run.sampling
+    grid = run.model.case.grid
+    ng = sampling.layout.ngrid
+    contact = zone.state != OPEN
+    slip = np.where(contact[:, None], out.slip, 0.0)  # the slip of contact points only
+    pn = np.where(contact, np.maximum(tractions.pn, 0.0), 0.0)
+    px = np.where(contact, tractions.px, 0.0)
+    py = np.where(contact, tractions.py, 0.0)
+    pr = run.probes
+    fields = {
+        "p_n": pn, "p_x": px, "p_y": py, "gap": gap,
+        "slip_x": sampling.sx * slip[:, 0], "slip_y": sampling.sy * slip[:, 1],
+        "state": zone.state, "wear_a": pr.wear_a, "wear_b": pr.wear_b,
+    }
+    return {name: v[:ng].reshape(grid.nx, grid.ny) for name, v in fields.items()}
+
+
+def line_tables(run: Run, out: OutputState, zone: ContactZone, tractions: Tractions
+                ) -> dict[str, Table]:
+    """``line_x/<step>``, ``line_y/<step>``: projected tractions (not limited to the
+    contact), gap and states along the lines through the centre."""
+    layout = run.sampling.layout
+    tables = {}
+    for name, sl in (("line_x", layout.line_x), ("line_y", layout.line_y)):
+        tables[f"{name}/{out.step}"] = {
+            "s": layout.line.copy(), "p_n": tractions.pn[sl],
+            "p_x": tractions.px[sl], "p_y": tractions.py[sl],
+            "gap": out.probe_ev.gn[sl], "state": zone.state[sl],
+        }
+    return tables
+
+
+def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tractions,
+                 planes: dict[str, Plane], axis: Table) -> dict[str, float]:
+    """The summary scalars of a step from its Gauss-point tractions, contact zone and
+    stresses (symmetry factors applied)."""
+    m = run.model
+    st = m.case.stress
+    sym, quad, ev = m.sym, run.quad, out.sol.ev
+    w = quad.w
+    stick = ev.state == STICK
+    vm, vm_x, vm_y, vm_z = vm_max_location(planes, st.x0, st.y0)
+    vm_axis, z_axis = axis_peak(axis["z"], axis["vm"],
+                                AXIS_FIT_WINDOW * max(zone.a_x, zone.a_y, m.h))
+    Q = [float(np.sum(w * ev.t[:, c])) for c in (0, 1)]
+    if m.shape == "quarter":
+        Q = [0.0, 0.0]
+    elif m.shape == "half":
+        Q = [sym.factor * Q[0], 0.0]
+    wear_q = quad.wear_a + quad.wear_b
+    wear_probe = run.probes.wear_a + run.probes.wear_b
+    return {
+        "step": out.step, "s": out.s, "cycle": float("nan"),
+        "P": sym.factor * float(np.sum(w * ev.pn)),
+        "Qx": Q[0], "Qy": Q[1],
+        "contact_area": sym.factor * zone.area,
+        "a_x": zone.a_x, "a_y": zone.a_y,
+        "p_max": float(tractions.pn_nodes.max()),
+        "w_max": float(max(wear_q.max(), wear_probe[:run.sampling.layout.ngrid].max())),
+        "wear_volume": sym.factor * float(np.sum(w * wear_q)),
+        "vm_max": vm, "vm_max_x": vm_x, "vm_max_y": vm_y, "vm_max_z": vm_z,
+        "stick_area": sym.factor * float(np.sum(w[stick])),
+        "slip_area": sym.factor * (zone.area - float(np.sum(w[stick]))),
+        "vm_axis_max": vm_axis, "vm_axis_z": z_axis,
+        "iterations": int(out.iterations), "converged": True,
+    }
+
+
+def _body_scalars(run: Run, u_body: np.ndarray, mat: Body, t0: float) -> dict[str, float]:
+    """``wall_s`` and the state scalars: approach, support reaction, shift."""
+    return {
+        "wall_s": time.perf_counter() - t0,
+        "approach": float(run.delta),
+        "P_reaction": run.model.support_reaction(u_body, mat),
+        "shift_x": float(run.D[0]), "shift_y": float(run.D[1]),
+    }

@@ -1,0 +1,30 @@
+"""Shared fixtures: bundled cases and the Hertz scales of a case.
+
+The functions behind them, and the convergence assertion ``assert_converges``, live in
+the plain module ``tests/vv_testing.py`` (importable by name from every test module, also
+inside module-level cached functions that fixtures cannot reach).
+"""
+
+from __future__ import annotations
+
+import pytest
+from vv_testing import load_bundled
+
+
+@pytest.fixture(scope="session")
+def bundled_case():
+    """``bundled_case(name, quick=False, overrides=None, index=0) -> Case``: a bundled case
+    file through :func:`cases.loader.load_case` (unknown names fail)."""
+    return load_bundled
+
+
+@pytest.fixture(scope="session")
+def hertz_case():
+    """The article's Hertz case (``cases/hertz.toml``, full size)."""
+    return load_bundled("hertz")
+
+
+@pytest.fixture(scope="session")
+def hertz_scales(hertz_case):
+    """(a0 [mm], p0 [MPa]) of the article's Hertz case: ``Case.hertz_scales``."""
+    return hertz_case.hertz_scales
