@@ -17,7 +17,8 @@ import numpy as np
 import pandas as pd
 
 from .errors import UserError
-from .results import DamagedResult, Malformed, Scan, read_csv, read_result
+from .readers import DamagedResult, Malformed, read_csv, read_result
+from .results import Scan
 
 INDEX = ["case", "solver", "param", "step"]
 KEYS = ["P", "p_max", "a_x", "a_y", "contact_area", "stick_area", "w_max", "wear_volume",

@@ -23,3 +23,8 @@ class RunFailed(Exception):
     def __init__(self, failures: list[str]):
         self.failures = list(failures)
         super().__init__("; ".join(self.failures))
+
+
+class IncompleteRun(Exception):
+    """A case directory whose manifest is missing, incomplete or contradicted by its files
+    (a result problem: exit status 1)."""

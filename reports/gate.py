@@ -39,7 +39,7 @@ def _num(x: float) -> str:
 
 def metric_problems(case: CaseResults) -> list[str]:
     """One line per failed metric of a case (``passed`` as recomputed from value and
-    tolerance, :func:`reports.results.passes`) and per metric whose recorded ``passed``
+    tolerance, :func:`reports.readers.passes`) and per metric whose recorded ``passed``
     disagrees with that."""
     lines = []
     for r in case.metrics.itertuples(index=False):

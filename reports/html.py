@@ -312,7 +312,7 @@ def render(results: Scan, out: Path) -> str:
     """The whole report page.  A case whose files turn out to be damaged while its
     section is drawn is moved from ``results.complete`` to ``results.damaged``."""
     from .manifest import provenance
-    from .results import DamagedResult
+    from .readers import DamagedResult
 
     when = provenance()["date"]
     toc, sections = [], []

@@ -22,6 +22,8 @@ from typing import Any
 from cases.result import atomic_write_text
 
 from . import layout
+from .errors import IncompleteRun
+from .readers import JSON_NAMES, Malformed, json_kind, read_json, read_result
 
 FORMAT = "contact-vv-run/1"
 _PACKAGES = (
@@ -34,8 +36,6 @@ THREAD_VARS = (
 )
 
 
-class IncompleteRun(Exception):
-    """A case directory whose manifest is missing, incomplete or contradicted by its files."""
 
 
 def sha256_file(path: str | Path) -> str:
@@ -163,17 +163,8 @@ _POSITIVE = frozenset({"hertz_a0", "hertz_p0"})
 ADDED_AFTER = frozenset({"sweep.png", "sweep_check.json"})
 
 
-_JSON_NAMES = {dict: "an object", list: "a list", str: "a string", int: "a number",
-               float: "a number", bool: "true or false", type(None): "null"}
-
-
-def json_kind(value: Any) -> str:
-    """What a decoded JSON value is, in JSON's words ("a list", "a number", ...)."""
-    return _JSON_NAMES.get(type(value), type(value).__name__)
-
-
 def _type_name(types: tuple[type, ...]) -> str:
-    return " or ".join(dict.fromkeys(_JSON_NAMES.get(t, t.__name__) for t in types))
+    return " or ".join(dict.fromkeys(JSON_NAMES.get(t, t.__name__) for t in types))
 
 
 def _is(value: Any, types: tuple[type, ...]) -> bool:
@@ -225,13 +216,12 @@ def check_schema(body: Any) -> list[str]:
 
 def read(case_dir: Path, *, verify: bool = True) -> dict[str, Any]:
     """The manifest of a complete case directory; :class:`IncompleteRun` otherwise
-    (:class:`reports.results.DamagedResult`, a subclass, if the manifest cannot be read
+    (:class:`reports.readers.DamagedResult`, a subclass, if the manifest cannot be read
     or is not shaped as a run writes it).
 
     ``verify``: every file it lists must exist with the recorded SHA-256, and every file
     of the directory must be listed (except dot files and :data:`ADDED_AFTER`).
     """
-    from .results import Malformed, read_json, read_result
 
     def parse(p: Path) -> dict[str, Any]:
         body = read_json(p)
