@@ -285,3 +285,19 @@ def _write(tmp_path: Path) -> Path:
     case = tmp_path / "c.toml"
     case.write_text(TINY)
     return case
+
+
+def test_a_contact_at_the_grid_edge_is_a_user_error(tmp_path, capsys):
+    """The half-space solver's own edge check, beyond the planner's a-priori radius: a
+    fretting contact under held load that wears wider (i = 1e-3 /MPa) until it reaches
+    the 0.5 mm grid is refused as a user error (exit 2) naming the keys to change."""
+    case = tmp_path / "edge.toml"
+    case.write_text(_set(_set(_set(FRET, "approach = 0.001", "P = 10.2"), "Lx = 1.6\nLy = 1.6",
+                                "Lx = 0.5\nLy = 0.5"), "cycles = 2", "cycles = 20")
+                    .replace("[materials.b]", "i1 = 1e-3\n[materials.b]")
+                    .replace("amplitude = 0.001", "amplitude = 0.01"))
+    code, err = _answer(["run", str(case), "--out", str(tmp_path / "o"), "--no-progress",
+                         "--solver", "ic"], capsys)
+    assert code == 2, err
+    assert "solver ic rejected the case: the contact area reaches the edge" in err
+    assert "enlarge grid.Lx/grid.Ly" in err
