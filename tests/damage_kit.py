@@ -57,6 +57,12 @@ def set_metric(frame: pd.DataFrame, quantity: str, **values: str) -> None:
         frame.loc[row, k] = v
 
 
+def metric_edit(quantity: str, **values: str) -> Callable[[Path], None]:
+    """A damage of a case: the metrics.csv row of ``quantity`` given ``values``."""
+    return lambda case: edit_csv(case / "metrics.csv",
+                                 lambda f: set_metric(f, quantity, **values))
+
+
 def truncated(path: Path) -> None:
     data = path.read_bytes()
     path.write_bytes(data[: len(data) // 2])

@@ -23,9 +23,9 @@ from damage_kit import (
     edit_manifest,
     edit_npz,
     huge_array,
+    metric_edit,
     npz,
     rehash,
-    set_metric,
     to_dir,
     truncated,
     wrong_shape,
@@ -119,14 +119,11 @@ DAMAGE: list[tuple[str, Callable[[Path], object], bool, int, int, str]] = [
     ("metrics-missing-columns", lambda c: edit_csv(
         c / "metrics.csv", lambda f: f.drop(columns=["value", "tolerance"])),
      True, 1, 1, "metrics.csv: missing column(s) value, tolerance"),
-    ("metrics-non-numeric-value", lambda c: edit_csv(
-        c / "metrics.csv", lambda f: set_metric(f, "p_max", value="abc")), True,
+    ("metrics-non-numeric-value", metric_edit("p_max", value="abc"), True,
      1, 1, "metrics.csv: column 'value' holds 'abc'"),
-    ("metrics-passed-not-boolean", lambda c: edit_csv(
-        c / "metrics.csv", lambda f: set_metric(f, "p_max", passed="maybe")), True,
+    ("metrics-passed-not-boolean", metric_edit("p_max", passed="maybe"), True,
      1, 1, "metrics.csv: column 'passed' holds 'maybe'"),
-    ("metrics-zero-tolerance", lambda c: edit_csv(
-        c / "metrics.csv", lambda f: set_metric(f, "vm_max_loc", tolerance="0")), True,
+    ("metrics-zero-tolerance", metric_edit("vm_max_loc", tolerance="0"), True,
      1, 1, "metrics.csv: column 'tolerance' holds 0.0 (data row 12), not a positive"),
     ("metrics-ragged-rows", lambda c: (c / "metrics.csv").write_text(
         (c / "metrics.csv").read_text() + "1,2,3,4,5,6,7,8,9,10,11,12,13,14,15\n"), True,
@@ -186,17 +183,13 @@ DAMAGE: list[tuple[str, Callable[[Path], object], bool, int, int, str]] = [
      False,
      1, 1, "sweep_check.json: not a regular file"),
     # metrics the gate must not trust: report shows them (exit 0), gate fails (exit 1)
-    ("metric-nan-marked-passed", lambda c: edit_csv(
-        c / "metrics.csv", lambda f: set_metric(f, "p_max", value="", passed="True")), True,
+    ("metric-nan-marked-passed", metric_edit("p_max", value="", passed="True"), True,
      0, 1, "FAIL hertz step 0 ic-analytic p_max rel = nan (not a finite number"),
-    ("metric-over-tolerance-marked-passed", lambda c: edit_csv(
-        c / "metrics.csv", lambda f: set_metric(f, "p_max", value="0.5", passed="True")),
+    ("metric-over-tolerance-marked-passed", metric_edit("p_max", value="0.5", passed="True"),
      True, 0, 1, "FAIL hertz step 0 ic-analytic p_max rel = 0.5 > tolerance"),
-    ("metric-infinite-tolerance-marked-passed", lambda c: edit_csv(
-        c / "metrics.csv", lambda f: set_metric(f, "p_max", tolerance="inf")), True,
+    ("metric-infinite-tolerance-marked-passed", metric_edit("p_max", tolerance="inf"), True,
      0, 1, "against tolerance inf (not a finite number)"),
-    ("metric-passing-marked-failed", lambda c: edit_csv(
-        c / "metrics.csv", lambda f: set_metric(f, "p_max", passed="False")), True,
+    ("metric-passing-marked-failed", metric_edit("p_max", passed="False"), True,
      0, 1, "INCONSISTENT hertz step 0 ic-analytic p_max rel"),
 ]
 
@@ -227,8 +220,7 @@ def test_damaged_case(res, capsys, damage, rehashed, report_code, gate_code, nee
 
 
 def test_marked_passed_metric_reports_the_contradiction(res, capsys):
-    edit_csv(res / "hertz" / "metrics.csv",
-             lambda f: set_metric(f, "p_max", value="nan", passed="True"))
+    metric_edit("p_max", value="nan", passed="True")(res / "hertz")
     rehash(res / "hertz")
     code, out, err = call(capsys, "gate", "--out", str(res))
     assert code == 1
