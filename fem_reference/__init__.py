@@ -9,6 +9,8 @@ Public API:
   :mod:`fem_reference.loading`, the fields in :mod:`fem_reference.output`);
 - :func:`write_vtu` ``(path, mesh)`` writes one of the ``RunResult.meta["vtu"]``
   ``(step, meshio.Mesh)`` meshes for ParaView; :func:`read_vtu` reads it back;
+- :func:`estimate` ``(case) -> cases.result.Cost``: peak memory and wall time of a run,
+  before any meshing (:mod:`fem_reference.cost`);
 - :class:`FemUnsupported` (a ``CaseError``: the case needs a feature the model does not
   have, e.g. fretting or P1), :class:`FemError` (a failure such as the contact leaving
   the FE contact zone), :class:`MeshError` (gmsh failed) and
@@ -18,7 +20,7 @@ Public API:
 from collections.abc import Callable
 
 from cases.model import Case
-from cases.result import RunResult, StepResult
+from cases.result import Cost, RunResult, StepResult
 
 from .contact import ContactConvergenceError
 from .mesh import MeshError
@@ -45,8 +47,16 @@ def supports(case: Case) -> str | None:
     return None
 
 
+def estimate(case: Case) -> Cost:
+    """Peak memory [bytes] and wall time [s] the FEM reference expects ``case`` to take,
+    with the case keys that drive each, before any meshing (:mod:`fem_reference.cost`)."""
+    from .cost import estimate as _estimate
+
+    return _estimate(case)
+
+
 __all__ = [
-    "supports",
+    "supports", "estimate",
     "solve", "write_vtu", "read_vtu", "FemError", "FemUnsupported", "MeshError",
     "ContactConvergenceError",
 ]

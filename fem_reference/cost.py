@@ -1,0 +1,371 @@
+"""What a case will cost the FEM reference, estimated before any meshing or allocation.
+
+Mesh.  :func:`mesh_spec` builds the :class:`~fem_reference.mesh.MeshSpec` that
+:class:`~fem_reference.model.FemModel` builds (``case.fem`` block, depth and h in units
+of a0; the quarter/half/full shape of the case's symmetry, :func:`~fem_reference.model.
+choose_shape`; the refined zone r_c = 1.25 a_max + 2 h from the expected contact radius
+a_max, Argatov's worn radius for sliding wear), and :func:`element_count` counts the
+tetrahedra gmsh will make without meshing: the element density ``1 / (C_TET size³)``
+integrated over the block, ``size(r, z)`` the size field of :mod:`fem_reference.mesh`
+(h in the refined cylinder, ``h + grading d`` beyond, capped at h_max), by Gauss-Legendre
+panels in cylindrical coordinates (r, z): breakpoints at the zone's radius and depth, at
+r_fine and at L (beyond which the square block covers part of each circle), and at most
+40 geometric panels on the scale h/grading beyond the zone, so that any h costs the same
+few thousand points (``fem.h = 1e-6``: 20 ms).  ``C_TET = 0.225`` (a regular tetrahedron
+of edge ``size`` has 0.118 size³; gmsh's are larger), fitted on the meshes of this
+project's mesh cache (L 4-40 a0, h 0.125-0.5 a0, quarter and half blocks, with and
+without r_fine): measured / estimated tets 0.88-1.21.  At h ~ a0/8 the graded shell
+around the zone holds half the elements, so they grow like h⁻² to h⁻³ there, like h⁻³
+for h → 0.  P2 nodes = 1.35 tets + 4.5 tets^(2/3) (the second term the boundary; within
+4 %), free DOFs n = 3 nodes less the supports (7.5 %, 4.5 %, 1.5 % for quarter, half and
+full blocks).  Condensed DOFs m: top facets within r_c, ``∫ dA / (C_TRI size²)`` with
+C_TRI = 0.405 (within 7 %), P2 surface nodes 2 F + 2.5 √F, times 1 (normal-only contact)
+or 3 components.
+
+Memory (peak RSS of the ``contact-vv run`` process): ``BASE_BYTES`` (the CLI's
+interpreter and imports, 140 MB, the mesh, and what a sweep's earlier points leave
+behind: measured 160-260 MB) plus the largest stage of :class:`~fem_reference.model.
+FemModel`:
+
+- assembly: 55 kB per tetrahedron (element matrices and 900 COO triplets each, then the
+  CSR; measured 51-59 kB);
+- the kept PARDISO factor with the stiffness matrices: ``290 n^(1/3)`` bytes per DOF
+  (nested dissection fills like n^(4/3); measured 8.8, 9.1, 12.5, 12.8 kB per DOF at
+  n = 37.7k, 29k, 71k, 91k), once per distinct Poisson's ratio;
+- the condensation ``Sᵀ K⁻¹ S`` (:meth:`~fem_reference.elasticity.Factorization.
+  schur_inverse`): three dense n × 512 blocks (right-hand sides, PARDISO's solution, its
+  copy; measured 2.96-3.1) and the dense operator, 8 m² bytes;
+- the dense surface operators: C₁, C_rel, its Cholesky factor, K_rel = C_rel⁻¹ and their
+  temporaries, ``DENSE_COPIES`` × 8 m² (measured 3.9).
+
+Assembly grows like h⁻³, the factor (n^(4/3)) and the dense operator (m²) like h⁻⁴; the
+condensation blocks lead down to h ≈ a0/30 with friction (3 components), a0/250 without,
+the dense operators below.  :attr:`Cost.memory_keys` and ``time_keys`` are
+the keys whose refinement (fem.h halved; fem.block, fem.depth, sliding_wear.distance
+doubled; sliding_wear.step halved) raises the estimate by 10 % or more, strongest first.
+
+Time (a cold point: a sweep reuses the mesh, factorisation and condensation for its
+later points, :func:`fem_reference.model._core`): 2 s of start-up and writing; meshing
+2e-5 s and assembly 1.2e-4 s per tetrahedron (measured 0.9-1.8e-4); PARDISO
+factorisation 2e-9 n² s (measured 1.4-3.4e-9: the machine's load); condensation
+5.5e-10 n^(4/3) s per condensed column (3.4-8.6e-10); C_rel's Cholesky and K_rel
+1.2e-10 m³ s; then per Newton iteration the Woodbury solve on the A = m (a_max/r_c)²
+DOFs in contact, 1.1e-10 A³ s (measured 1.0-1.3e-10), and the dense products, 2e-9 m² s.
+Iterations: 5 for a frictionless or full-sliding solve (measured 4-6), 10 per friction
+increment (52-65 for 6), 3 per wear step (2-5); the normal increments of dissimilar
+materials count (k/5)² of a full one.  0.3 s per output step.
+
+Calibration, 2026-11, on this project's 2-core machine shared with other jobs
+(``/usr/bin/time -v contact-vv run CASE --solver fem`` with an empty mesh cache; tets,
+free DOFs, m from the manifest; peak RSS of the process, over all its sweep points; wall
+time of the (cold) point from summary.csv, start-up excluded; "est" the estimate):
+
+==============================  =======  =======  ======  ======  ======  ======  ======
+case (point)                    tets     DOFs     m       peak    est.    wall    est.
+                                (est.)   (est.)   (est.)  MB      MB      s       s
+==============================  =======  =======  ======  ======  ======  ======  ======
+hertz --quick                   8614     37710    597     1037    1108    7.1     7.0
+                                8899     38700    600
+hertz                           8614     37710    597     1037    1108    6.2     7.0
+                                8899     38700    600
+hertz --quick, fem.h=0.1        13078    56352    855     1510    1643    8.0     12.4
+                                13790    58841    866
+hertz --quick, fem.h=0.08       20596    87440    1230    2420    2637    16.5    26.2
+                                22267    93303    1266
+hertz --quick, fem.block=10     8518     37382    596     1034    1096    3.9     6.9
+                                8788     38240    600
+cattaneo_mindlin --quick        16520    71250    3449    2150    2264    50.3    55.5
+(Qx=0.765)                      17798    77627    3528
+sliding_friction --quick        16520    71250    1166    1948    2175    12.3    19.3
+(mu=0.15)                       17798    77627    1176
+sliding_friction --quick,       31189    132021   2211    3920    4658    61.0    69.1
+load.slide_angle=45 (full)      35596    156390   2318
+dissimilar --quick (two ν)      16520    71250    3449    3054    3324    62.0    81.5
+                                17798    77627    3528
+pin_on_disk --quick (mu=0)      10973    47768    1266    (1)     1386    13.0    16.8
+                                11394    49007    1288
+pin_on_disk --quick (mu=0.5)    21153    90711    2514    2704    2831    75.1    74.1
+                                22788    98500    2540
+pin_on_disk --quick,            3420     15716    552     (1)     539     4.7     4.9
+fem.h=0.2 (mu=0)                3221     14790    530
+pin_on_disk --quick,            6468     29018    1039    951     882     10.6    9.1
+fem.h=0.2 (mu=0.5)              6442     29378    1037
+==============================  =======  =======  ======  ======  ======  ======  ======
+
+(1) the process peak is that of the sweep's other point, on the next row.
+
+Estimate / measurement: tets within a factor 1.14, DOFs 1.18, m 1.05; memory 0.93-1.19
+(within 1.2); time 0.86-1.77 (within 1.8, mostly above: the constants were taken from
+the runs under load).  ``tests/test_fem_cost.py`` holds the estimate to these numbers.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import types
+from dataclasses import dataclass
+
+import numpy as np
+
+from cases.model import Case, FemSettings
+from cases.result import Cost
+
+from .mesh import MeshSpec
+from .model import FemModel, choose_shape, expected_radius, reference_length
+
+C_TET = 0.225  # mean tetrahedron volume / size³ of gmsh's meshes
+C_TRI = 0.405  # mean surface triangle area / size²
+BASE_BYTES = 250e6  # the CLI process: imports (140 MB), the mesh, earlier points' leftovers
+ASSEMBLY_BYTES_PER_TET = 55e3
+FACTOR_BYTES_PER_DOF = 290.0  # times n^(1/3)
+SCHUR_BLOCK = 512  # right-hand sides per partial solve (Factorization.schur_inverse)
+DENSE_COPIES = 4  # m x m float64 arrays alive while C_rel, its factor and K_rel are formed
+
+SECONDS_BASE = 2.0  # start-up, imports and writing the results
+SECONDS_PER_TET_MESH = 2e-5
+SECONDS_PER_TET_ASSEMBLY = 1.2e-4
+SECONDS_FACTOR = 2.0e-9  # times n²
+SECONDS_CONDENSE = 5.5e-10  # times n^(4/3) per condensed column
+SECONDS_DENSE = 1.2e-10  # times m³ (C_rel Cholesky, K_rel)
+SECONDS_CONTACT = 1.1e-10  # times A³ per Newton iteration (A DOFs in contact)
+SECONDS_CONTACT_M2 = 2e-9  # times m² per Newton iteration (dense products, line search)
+SECONDS_OUTPUT = 0.3  # per output step (recovery, stress planes, .vtu)
+ITERATIONS = {"single": 5, "friction": 10, "wear": 3}
+
+_PANELS_MAX = 40  # geometric panels beyond the refined zone
+_GAUSS = np.polynomial.legendre.leggauss(10)
+
+
+def mesh_spec(case: Case) -> tuple[MeshSpec | None, dict]:
+    """The mesh parameters :class:`~fem_reference.model.FemModel` uses for ``case``
+    (None for the spec when they are invalid: the run would refuse them) and the model's
+    other drivers: ``a_max`` (expected radius / a_ref), ``r_c``, ``shape``, ``comps``
+    (condensed components), ``nus`` (distinct Poisson's ratios), ``law``."""
+    fem = case.fem
+    a_max = expected_radius(case, reference_length(case))
+    r_c = 1.25 * a_max + 2.0 * fem.h
+    z_ref = max(1.0, 0.8 * a_max)
+    r_fine = min(1.25, r_c) if a_max > 1.25 else r_c
+    shape = choose_shape(case)
+    law = FemModel._law_mode(types.SimpleNamespace(case=case))
+    normal_only = law == "frictionless" or (law == "sliding" and case.identical_materials)
+    info = {"a_max": a_max, "r_c": r_c, "shape": shape, "law": law,
+            "comps": (2,) if normal_only else (0, 1, 2),
+            "nus": tuple(sorted({case.a.nu, case.b.nu}))}
+    kw = dict(shape=shape, L=fem.block, H=fem.depth, h=fem.h, r_ref=r_c, z_ref=z_ref,
+              grading=0.25, h_max=fem.block / 4.0, r_fine=r_fine)
+    try:
+        spec = MeshSpec(**kw)
+    except Exception:  # invalid parameters: estimate them all the same
+        spec = None
+    info["params"] = kw
+    return spec, info
+
+
+# ---------------------------------------------------------------- mesh size and counts
+
+
+def _size(r: np.ndarray, z: np.ndarray, p: dict) -> np.ndarray:
+    """The mesh-size field of :func:`fem_reference.mesh._generate` at radius r, depth z."""
+    inner = p["h"]
+    if p["r_fine"] is not None and p["r_fine"] < p["r_ref"]:
+        inner = p["h"] * np.maximum(1.0, np.hypot(r, z) / p["r_fine"])
+    d = np.hypot(np.maximum(r - p["r_ref"], 0.0), np.maximum(z - p["z_ref"], 0.0))
+    return np.minimum(inner + p["grading"] * d, p["h_max"])
+
+
+def _rule(end: float, zone: float, p: dict, extra: tuple[float, ...] = ()
+          ) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights on [0, end]: panels split at ``zone``, ``extra``
+    and geometrically beyond ``zone`` on the scale h/grading up to where the size reaches
+    h_max."""
+    h, g = p["h"], p["grading"]
+    reach = min(max(p["h_max"] - h, 0.0) / g, max(end - zone, 0.0))
+    cuts = {0.0, end, min(zone, end), min(zone + reach, end)}
+    cuts.update(e for e in extra if 0.0 < e < end)
+    if reach > 0:
+        ratio = max(2.0, (g * reach / h) ** (1.0 / _PANELS_MAX)) if h > 0 else 2.0
+        d = h / g
+        while d < reach:
+            cuts.add(zone + d)
+            d *= ratio
+    cuts = sorted(c for c in cuts if math.isfinite(c))
+    x, w = _GAUSS
+    nodes, weights = [], []
+    for a, b in zip(cuts[:-1], cuts[1:], strict=True):
+        if b > a:
+            nodes.append(a + (b - a) * (x + 1.0) / 2.0)
+            weights.append((b - a) / 2.0 * w)
+    return np.concatenate(nodes), np.concatenate(weights)
+
+
+_SECTORS = {"quarter": 1.0, "half": 2.0, "full": 4.0}
+FREE = {"quarter": 0.925, "half": 0.955, "full": 0.985}  # free DOFs / 3 nodes (supports)
+
+
+def _arc(r: np.ndarray, L: float, shape: str) -> np.ndarray:
+    """Length of the circle of radius r inside the block's section (|x|, |y| <= L,
+    restricted by the symmetry planes)."""
+    theta = np.full_like(r, math.pi / 2)
+    out = r > L
+    theta[out] = math.pi / 2 - 2.0 * np.arccos(np.minimum(L / r[out], 1.0))
+    return r * np.maximum(theta, 0.0) * _SECTORS[shape]
+
+
+def element_count(p: dict) -> float:
+    """Tetrahedra of the block mesh of parameters ``p`` (a MeshSpec's fields):
+    ``∫ dV / (C_TET size³)``."""
+    L, H = p["L"], p["H"]
+    fine = (p["r_fine"],) if p["r_fine"] else ()
+    r, wr = _rule(math.sqrt(2.0) * L, p["r_ref"], p, (L, *fine))
+    z, wz = _rule(H, p["z_ref"], p, fine)
+    R, Z = np.meshgrid(r, z, indexing="ij")
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        density = _arc(R, L, p["shape"]) / _size(R, Z, p) ** 3
+        return _finite_or_inf(float(wr @ density @ wz) / C_TET)
+
+
+def surface_facets(p: dict, r_c: float) -> float:
+    """Top-surface triangles within radius r_c: ``∫ dA / (C_TRI size²)``."""
+    fine = (p["r_fine"],) if p["r_fine"] else ()
+    r, w = _rule(r_c, r_c, p, fine)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        area = _finite_or_inf(float(w @ (r / _size(r, np.zeros_like(r), p) ** 2)))
+    return area * _SECTORS[p["shape"]] * math.pi / 2 / C_TRI
+
+
+# ---------------------------------------------------------------- the estimate
+
+
+@dataclass(frozen=True)
+class Breakdown:
+    """The sizes and the memory [bytes] and time [s] terms of an estimate."""
+
+    tets: float
+    dofs: float  # free DOFs n
+    surface_dofs: float  # condensed DOFs m
+    contact_dofs: float  # DOFs in contact at the largest contact, A
+    memory: dict  # stage -> peak bytes
+    seconds: dict  # stage -> seconds
+
+    @property
+    def peak(self) -> float:
+        return max(self.memory.values())
+
+    @property
+    def total_seconds(self) -> float:
+        return sum(self.seconds.values())
+
+
+def contact_solves(case: Case, law: str) -> tuple[float, int, int]:
+    """(contact solves, Newton iterations per solve, output steps) of the load path
+    (:mod:`fem_reference.loading`).  The normal load increments of dissimilar materials
+    count by their contact size: the k-th of 5 has A ∝ (k/5)^(2/3), A³ ∝ (k/5)²."""
+    if case.kind == "sliding_wear" and case.sliding_wear is not None:
+        sw = case.sliding_wear
+        n = max(int(round(sw.distance / sw.step)), 1) if sw.step > 0 else 1
+        outputs = len(sw.output_s) + 2 if sw.output_s else n + 1
+        return n + 1, ITERATIONS["wear"], min(outputs, n + 1)
+    if law != "friction":
+        return 1, ITERATIONS["single"], 1
+    n_normal = 1.0 if case.identical_materials else sum((k / 5) ** 2 for k in range(1, 6))
+    n_tangential = 5 if case.load.tangential_mode in ("load", "shift") else 0
+    return n_normal + n_tangential, ITERATIONS["friction"], 1
+
+
+def breakdown(case: Case) -> Breakdown:
+    """Sizes and cost terms of ``case`` on the FEM reference (module doc)."""
+    with np.errstate(over="ignore", invalid="ignore"):  # a hostile h overflows to inf
+        return _breakdown(case)
+
+
+def _breakdown(case: Case) -> Breakdown:
+    _, info = mesh_spec(case)
+    p = info["params"]
+    tets = np.float64(element_count(p))
+    nodes = 1.35 * tets + 4.5 * tets ** (2.0 / 3.0)
+    n = 3.0 * nodes * FREE[p["shape"]]
+    facets = np.float64(surface_facets(p, info["r_c"]))
+    m = len(info["comps"]) * (2.0 * facets + 2.5 * np.sqrt(facets))
+    A = m * min(1.0, (info["a_max"] / info["r_c"]) ** 2)
+    n_nu = len(info["nus"])
+    factor = FACTOR_BYTES_PER_DOF * n ** (4.0 / 3.0)
+    dense = 8.0 * m * m
+    kept = factor + dense if n_nu > 1 else 0.0  # the first ν's factor and C₁ (0 * inf)
+    memory = {
+        "assembly": BASE_BYTES + kept + ASSEMBLY_BYTES_PER_TET * tets,
+        "condensation": BASE_BYTES + kept + factor
+        + max(3 * 8.0 * n * min(m, SCHUR_BLOCK) + dense, 3 * dense),
+        "dense": BASE_BYTES + kept + factor + DENSE_COPIES * dense,
+    }
+    solves, iterations, outputs = contact_solves(case, info["law"])
+    seconds = {
+        "base": SECONDS_BASE,
+        "mesh": SECONDS_PER_TET_MESH * tets,
+        "assembly": n_nu * SECONDS_PER_TET_ASSEMBLY * tets,
+        "factorisation": n_nu * SECONDS_FACTOR * n * n,
+        "condensation": n_nu * SECONDS_CONDENSE * n ** (4.0 / 3.0) * m,
+        "dense": SECONDS_DENSE * m**3,
+        "contact": solves * iterations * (SECONDS_CONTACT * A**3 + SECONDS_CONTACT_M2 * m * m),
+        "output": SECONDS_OUTPUT * outputs,
+    }
+    return Breakdown(tets=float(tets), dofs=float(n), surface_dofs=float(m),
+                     contact_dofs=float(A),
+                     memory={k: _finite_or_inf(v) for k, v in memory.items()},
+                     seconds={k: _finite_or_inf(v) for k, v in seconds.items()})
+
+
+def _finite_or_inf(value: float) -> float:
+    """NaN (an overflow met a zero weight) counts as infinite: beyond every limit."""
+    return math.inf if math.isnan(value) else float(value)
+
+
+def _with(case: Case, key: str, factor: float) -> Case:
+    """``case`` with the numeric ``key`` (fem.* or sliding_wear.*) multiplied."""
+    section, name = key.split(".")
+    sub = getattr(case, section)
+    return dataclasses.replace(case, **{section: dataclasses.replace(
+        sub, **{name: getattr(sub, name) * factor})})
+
+
+def _drivers(case: Case, base: Breakdown) -> tuple[tuple[str, ...], tuple[str, ...]]:
+    """(memory keys, time keys): the keys whose refinement (fem.h halved, the block,
+    its depth or the sliding distance doubled, the wear step halved) raises the estimate
+    by 10 % or more, the strongest first.  An estimate beyond floating point (inf) names
+    the fem keys whose default value brings it back, the cheapest first."""
+    if not (math.isfinite(base.peak) and math.isfinite(base.total_seconds)):
+        default = FemSettings()
+        found = []
+        for key in ("fem.h", "fem.block", "fem.depth"):
+            name = key.split(".")[1]
+            b = breakdown(dataclasses.replace(case, fem=dataclasses.replace(
+                case.fem, **{name: getattr(default, name)})))
+            if math.isfinite(b.peak):
+                found.append((b.peak, key))
+        keys = tuple(k for _, k in sorted(found)) or ("fem.h", "fem.block", "fem.depth")
+        return keys, keys
+    moves = [("fem.h", 0.5), ("fem.block", 2.0), ("fem.depth", 2.0)]
+    if case.kind == "sliding_wear" and case.sliding_wear is not None:
+        moves += [("sliding_wear.distance", 2.0), ("sliding_wear.step", 0.5)]
+    mem, sec = {}, {}
+    for key, factor in moves:
+        b = breakdown(_with(case, key, factor))
+        mem[key] = b.peak / base.peak
+        sec[key] = b.total_seconds / base.total_seconds
+
+    def ranked(ratios: dict) -> tuple[str, ...]:
+        keys = [k for k in ratios if not ratios[k] < 1.1]  # NaN (inf/inf) counts
+        keys.sort(key=lambda k: -ratios[k] if math.isfinite(ratios[k]) else -math.inf)
+        return tuple(keys) or ("fem.h",)
+
+    return ranked(mem), ranked(sec)
+
+
+def estimate(case: Case) -> Cost:
+    """Peak memory [bytes] and wall time [s] of :func:`fem_reference.solve` on ``case``
+    (a cold run: mesh, factorisation and condensation included; module doc)."""
+    b = breakdown(case)
+    memory_keys, time_keys = _drivers(case, b)
+    return Cost(memory=b.peak, seconds=b.total_seconds, memory_keys=memory_keys,
+                time_keys=time_keys)

@@ -1,0 +1,143 @@
+"""The FEM reference's cost estimate (fem_reference.cost): no meshing, no FE solve.
+
+The calibration numbers below were measured on this project's 2-core machine (shared
+with other jobs) in 2026-11 with ``/usr/bin/time -v contact-vv run CASE --quick
+--solver fem`` and an empty mesh cache (the table of ``fem_reference/cost.py``): tets,
+free DOFs and condensed DOFs m from the run's manifest, the peak RSS of the process, the
+wall time of the (cold) point from summary.csv.  The test guards the estimate formula
+against drift; it is not a timing test.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import time
+
+import pytest
+
+import fem_reference
+from cases.loader import load_case
+from cases.model import CaseError
+from fem_reference import cost
+
+MB = 1e6
+
+# (case, quick point, tets, free DOFs, m, process peak RSS [MB] or None, point wall [s])
+# measured 2026-11 (fem_reference/cost.py, calibration table)
+CALIBRATION = [
+    ("hertz", 0, 8614, 37710, 597, 1037, 7.1),
+    ("cattaneo_mindlin", 0, 16520, 71250, 3449, 2150, 50.3),
+    ("sliding_friction", 0, 16520, 71250, 1166, 1948, 12.3),
+    ("dissimilar", 0, 16520, 71250, 3449, 3054, 62.0),
+    ("pin_on_disk", 0, 10973, 47768, 1266, None, 13.0),
+    ("pin_on_disk", 1, 21153, 90711, 2514, 2704, 75.1),
+]
+# the worst ratios of estimate and measurement over the calibration table, with margin
+SIZE_FACTOR = 1.25  # measured: tets 1.14, DOFs 1.18, m 1.05
+MEMORY_FACTOR = 1.3  # measured 1.19
+TIME_FACTOR = 2.0  # measured 1.77
+
+
+def _ratio(a: float, b: float) -> float:
+    return max(a / b, b / a)
+
+
+@pytest.mark.parametrize("name, point, tets, dofs, m, peak_mb, wall_s", CALIBRATION)
+def test_estimate_matches_the_calibration_runs(name, point, tets, dofs, m, peak_mb, wall_s):
+    case = load_case(name, quick=True)[point]
+    b = cost.breakdown(case)
+    c = fem_reference.estimate(case)
+    assert _ratio(b.tets, tets) < SIZE_FACTOR
+    assert _ratio(b.dofs, dofs) < SIZE_FACTOR
+    assert _ratio(b.surface_dofs, m) < SIZE_FACTOR
+    if peak_mb is not None:
+        assert _ratio(c.memory / MB, peak_mb) < MEMORY_FACTOR
+    assert _ratio(c.seconds, wall_s) < TIME_FACTOR
+    assert c.memory == b.peak and c.seconds == pytest.approx(b.total_seconds)
+    assert c.memory_keys[0] == "fem.h" and c.time_keys[0] == "fem.h"
+
+
+def test_estimate_builds_the_solvers_mesh_spec(monkeypatch):
+    """The spec, condensed components and Poisson's ratios the estimate assumes are the
+    ones FemModel builds (caught where it asks for its core, before any meshing)."""
+    from fem_reference import model
+
+    seen = {}
+
+    class Stop(Exception):
+        pass
+
+    def fake_core(spec, a_ref, comps, nus, log=None):
+        seen.update(spec=spec, comps=tuple(comps), nus=tuple(sorted(set(nus))))
+        raise Stop
+
+    monkeypatch.setattr(model, "_core", fake_core)
+    for name in ("hertz", "cattaneo_mindlin", "sliding_friction", "dissimilar",
+                 "pin_on_disk", "pin_on_disk_orthotropic"):
+        for case in load_case(name, quick=True):
+            with pytest.raises(Stop):
+                model.FemModel(case)
+            spec, info = cost.mesh_spec(case)
+            assert spec == seen["spec"], (name, case.param)
+            assert info["comps"] == seen["comps"] and info["nus"] == seen["nus"]
+
+
+def test_estimate_never_meshes(monkeypatch):
+    from fem_reference import mesh
+
+    def no(*a, **k):
+        raise AssertionError("the estimate must not mesh")
+
+    monkeypatch.setattr(mesh, "_generate", no)
+    monkeypatch.setattr(mesh, "build_points", no)
+    fem_reference.estimate(load_case("pin_on_disk", quick=True)[1])
+
+
+def _with_h(case, h):
+    return dataclasses.replace(case, fem=dataclasses.replace(case.fem, h=h))
+
+
+@pytest.mark.parametrize("name", ["hertz", "cattaneo_mindlin"])
+def test_estimate_grows_like_h_cubed(name):
+    """Halving fem.h: the elements grow like h⁻³ once the refined zone holds most of
+    them (h⁻² from the graded shell around it at coarse h), the memory at least as fast
+    (the factor's n^(4/3), the dense surface operator's h⁻⁴), the time faster (n²)."""
+    case = load_case(name, quick=True)[0]
+    for h, tets_low in ((0.125, 4.0), (0.03125, 5.5), (0.002, 7.5)):
+        b1, b2 = cost.breakdown(_with_h(case, h)), cost.breakdown(_with_h(case, h / 2))
+        assert tets_low < b2.tets / b1.tets < 8.5
+        assert 4.0 < b2.peak / b1.peak < 17.0
+        assert b2.total_seconds / b1.total_seconds > 8.0
+    coarse, fine = (fem_reference.estimate(_with_h(case, h)) for h in (0.03125, 0.015625))
+    assert 6.0 < fine.memory / coarse.memory < 17.0
+
+
+def test_hostile_h_is_estimated_at_once_and_names_fem_h():
+    case = _with_h(load_case("hertz", quick=True)[0], 1e-6)
+    t0 = time.perf_counter()
+    c = fem_reference.estimate(case)
+    assert time.perf_counter() - t0 < 1.0
+    assert c.memory_keys[0] == "fem.h" and c.time_keys[0] == "fem.h"
+    assert c.memory > 1e15 and c.seconds > 1e9
+    assert math.isfinite(c.memory) and math.isfinite(c.seconds)
+
+
+def test_worn_cases_name_the_sliding_distance():
+    c = fem_reference.estimate(load_case("pin_on_disk", quick=True)[1])
+    assert "sliding_wear.distance" in c.memory_keys
+    assert {"sliding_wear.distance", "sliding_wear.step"} <= set(c.time_keys)
+
+
+def test_planner_refuses_a_hostile_h_naming_fem_h():
+    from reports.plan import plan_case
+
+    with pytest.raises(CaseError, match=r"fem\.h"):
+        plan_case("hertz", ["fem"], overrides={"fem.h": 0.001})
+
+
+def test_planner_accepts_the_bundled_quick_case():
+    from reports.plan import Limits, plan_case
+
+    plan = plan_case("hertz", ["fem"], quick=True, limits=Limits(memory=4 * 2**30))
+    assert plan.units() == [(0, "fem")]
