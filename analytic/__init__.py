@@ -7,6 +7,7 @@ against it).  Modules:
 - :mod:`.quadrature` — stresses of Hertz-shaped tractions on a circle by quadrature;
 - :mod:`.hertz` — Hertz contact, on-axis and surface closed forms, Hamilton–Goodman field;
 - :mod:`.mindlin` — Cattaneo–Mindlin partial slip, tangential compliance, fretting regime;
+- :mod:`.fretting` — the first fretting cycle: Mindlin–Deresiewicz loop, energy, slip, wear;
 - :mod:`.sliding` — the sliding sphere: stresses, σ_VM maximum vs μ, surface jump;
 - :mod:`.wear` — Argatov (2011) and Hegadekatte (2008) pin wear, orthotropic i_w(θ);
 - :mod:`.solver` — the "analytic" solver: ``solve(case, *, progress, on_output)`` and
