@@ -129,8 +129,8 @@ def sliding_wear(case: Case, progress: bool = False,
 def fretting_path(amplitude: float, steps_per_cycle: int) -> np.ndarray:
     """Imposed displacements of one cycle +A -> -A -> +A (excluding the start +A)."""
     half = steps_per_cycle // 2
-    down = amplitude * (1 - 2 * np.arange(1, half + 1) / half)
-    return np.concatenate([down, -down[::-1][1:], [amplitude]])
+    down = amplitude * (1 - 2 * np.arange(1, half + 1) / half)  # +A -> -A
+    return np.concatenate([down, down[::-1][1:], [amplitude]])  # -A -> +A on the same points
 
 
 def fretting(case: Case, progress: bool = False,

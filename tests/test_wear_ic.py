@@ -176,9 +176,17 @@ def test_fretting_cycle_jump_convergence():
                                what=f"{key} at 1e4 cycles vs the cycle jump"))
 
 
-def test_fretting_path_is_a_closed_cycle():
-    path = fretting_path(1.0, 8)
-    assert path[-1] == 1.0 and path.min() == -1.0 and len(path) == 8
+@pytest.mark.parametrize("steps", [4, 8, 20])
+def test_fretting_path_is_a_closed_cycle(steps):
+    """+A -> -A -> +A in equal steps: down to -A through half the steps, back up through
+    the same points (a path that jumped or turned early would dissipate the wrong energy:
+    tests/test_analytic_fretting.py measures the loop against Mindlin-Deresiewicz)."""
+    path = np.concatenate([[1.0], fretting_path(1.0, steps)])
+    assert len(path) == steps + 1 and path[-1] == 1.0 and path.min() == -1.0
+    turn = int(np.argmin(path))
+    assert turn == steps // 2
+    np.testing.assert_allclose(np.diff(path[:turn + 1]), -4.0 / steps, rtol=1e-12)
+    np.testing.assert_allclose(np.diff(path[turn:]), 4.0 / steps, rtol=1e-12)
 
 
 @pytest.mark.full
