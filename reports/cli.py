@@ -88,6 +88,10 @@ def build_parser() -> argparse.ArgumentParser:
     run = sub.add_parser("run", help="run cases through the solvers")
     run.add_argument("cases", nargs="*", metavar="CASE", help="bundled case name or TOML path")
     run.add_argument("--all", action="store_true", help="every bundled case")
+    run.add_argument("--convergence", action="store_true",
+                     help="grid studies: also run every numerical solver on two grids "
+                     "coarser by 1.5 and 1.5² and write DIR/<case>/convergence.csv "
+                     "(observed order, Richardson extrapolation, GCI)")
     common(run, solving=True)
 
     report = sub.add_parser("report", help="write DIR/index.html from the results in DIR")
@@ -189,6 +193,10 @@ def cmd_run(args: argparse.Namespace) -> int:
     limits = _limits(args)
     plans = [plan_case(n, chosen, quick=args.quick, overrides=overrides, skipped=skipped,
                        limits=limits) for n in names]  # validate every case before running
+    if args.convergence:
+        from .gridstudy import add_grids
+
+        plans = [add_grids(p, limits) for p in plans]
     seen: dict[str, str] = {}
     for n, p in zip(names, plans, strict=True):
         if p.dir_name in seen:

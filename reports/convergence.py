@@ -12,6 +12,22 @@ J. Fluids Eng. 130 (2008) 078001):
 - GCI21 = Fs |e21| / (r21^p − 1) with the relative difference e21 = (f1 − f2)/f1 and the
   safety factor Fs = 1.25 for three grids; GCI32 likewise on the coarser pair;
 - asymptotic range: GCI32 / (r21^p GCI21) ≈ 1.
+
+:func:`classify` names the behaviour of a study (the ``status`` of ``convergence.csv``,
+:mod:`reports.gridstudy`):
+
+- ``exact``: the three values agree to :data:`EXACT_REL` (a load the solver imposes, a
+  quantity that is zero on every grid); no order, GCI 0;
+- ``oscillating``: the differences ε21 and ε32 change sign;
+- ``not converged``: the differences do not shrink (|ε21| ≥ |ε32|, p ≤ 0: diverging or
+  stalled), only the finest pair agrees (no order), a value is missing, or the
+  asymptotic-range check fails: an observed order outside :data:`ORDER_RANGE` (a
+  three-point fit always reproduces its own data, so an order far from what a
+  discretisation can give — a coarse grid outside the asymptotic range, quantisation to
+  cells — is the sign that the GCI cannot be trusted) or GCI32 / (r21^p GCI21) outside
+  :data:`ASYMPTOTIC_BAND` (the values change by more than about 20 %);
+- ``converged``: monotone, shrinking differences, 0 < p within :data:`ORDER_RANGE` and
+  the asymptotic-range check within its band.
 """
 
 from __future__ import annotations
@@ -20,6 +36,22 @@ import math
 from dataclasses import dataclass
 
 FS_THREE_GRIDS = 1.25
+
+#: statuses of a three-grid study (:func:`classify`)
+CONVERGED, OSCILLATING, NOT_CONVERGED, EXACT = "converged", "oscillating", "not converged", \
+    "exact"
+STATUSES = (CONVERGED, OSCILLATING, NOT_CONVERGED, EXACT)
+#: three values within this relative spread are ``exact`` (solver tolerances are 1e-10)
+EXACT_REL = 1e-9
+#: observed orders a discretisation of these solvers can plausibly show: the √-edge of a
+#: contact pressure limits some quantities to 0.5, quadratic elements give at most 3–4
+ORDER_RANGE = (0.5, 5.0)
+#: accepted range of GCI32 / (r21^p GCI21) (1 in the asymptotic range)
+ASYMPTOTIC_BAND = (0.8, 1.25)
+#: the columns of ``convergence.csv`` (:mod:`reports.gridstudy`); the first 14 required
+TABLE_COLUMNS = ["solver", "param", "step", "quantity", "h1", "h2", "h3", "f1", "f2", "f3",
+                 "order", "f_extrapolated", "gci_fine", "status", "gci_coarse", "asymptotic",
+                 "note"]
 
 
 @dataclass(frozen=True)
@@ -105,3 +137,38 @@ def study(f: tuple[float, float, float], h: tuple[float, float, float]) -> GridS
                      gci_fine=g21, gci_coarse=g32, asymptotic=asym,
                      oscillatory=(f3 - f2) * (f2 - f1) < 0,
                      converging=abs(f2 - f1) < abs(f3 - f2))
+
+
+def is_exact(f: tuple[float, float, float], rel: float = EXACT_REL) -> bool:
+    """Whether three finite values agree to ``rel`` of the largest (all zero included)."""
+    scale = max(abs(v) for v in f)
+    return max(f) - min(f) <= rel * scale
+
+
+def classify(st: GridStudy) -> tuple[str, str]:
+    """(status, reason) of a three-grid study (module doc); the reason is empty for
+    ``converged`` and ``exact``."""
+    f1, f2, f3 = st.f
+    if not all(math.isfinite(v) for v in st.f):
+        return NOT_CONVERGED, "a value is missing (not finite) on some grid"
+    if is_exact(st.f):
+        return EXACT, ""
+    e21, e32 = f2 - f1, f3 - f2
+    if st.oscillatory:
+        return OSCILLATING, (f"differences change sign (f2 - f1 = {e21:.3g}, "
+                             f"f3 - f2 = {e32:.3g})")
+    if e21 == 0 or e32 == 0:
+        return NOT_CONVERGED, ("only the finest pair agrees" if e21 == 0 else
+                               "only the coarsest pair agrees") + ": no observed order"
+    if not st.converging or not (st.p > 0):
+        return NOT_CONVERGED, (f"differences do not shrink (|f2 - f1| = {abs(e21):.3g} >= "
+                               f"|f3 - f2| = {abs(e32):.3g})")
+    lo, hi = ORDER_RANGE
+    if not lo <= st.p <= hi:
+        return NOT_CONVERGED, (f"observed order {st.p:.3g} outside [{lo:g}, {hi:g}]: not "
+                               "in the asymptotic range")
+    lo, hi = ASYMPTOTIC_BAND
+    if not lo <= st.asymptotic <= hi:
+        return NOT_CONVERGED, (f"GCI32/(r21^p GCI21) = {st.asymptotic:.3g} outside "
+                               f"[{lo:g}, {hi:g}]: not in the asymptotic range")
+    return CONVERGED, ""

@@ -1,6 +1,8 @@
 """``contact-vv gate``: print the metrics table; fail on any failed metric (``passed``
 recomputed from value and tolerance; a recorded ``passed`` that disagrees is a problem
-too), non-converged run, incomplete or damaged case, naming each."""
+too), non-converged run, incomplete or damaged case, naming each.  Quantities whose grid
+study (``run --convergence``, :mod:`reports.gridstudy`) is not converged are printed as
+``NOT CONVERGED (grid) …`` notes with their three values; they do not fail the gate."""
 
 from __future__ import annotations
 
@@ -11,6 +13,7 @@ from typing import TextIO
 import pandas as pd
 
 from .errors import RunFailed, UserError
+from .gridstudy import note_lines
 from .layout import METRICS
 from .results import CaseResults, Scan, not_converged, scan
 
@@ -130,6 +133,8 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
         if stale_case_file(case.manifest):
             print(f"note: {case.name}: the case file {case.manifest.get('case_file')} changed "
                   "since the run (re-run to check the current version)", file=stream)
+        for line in note_lines(case.name, case.convergence):  # information, not failures
+            print(line, file=stream)
     n_ok = int(table["passed"].astype(str).str.lower().isin(["true", "1"]).sum()) \
         if not table.empty else 0
     print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table)} metric(s) passed, "

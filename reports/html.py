@@ -8,6 +8,7 @@ import base64
 import html
 import json
 import math
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -15,9 +16,10 @@ import pandas as pd
 
 from cases.result import atomic_write_text
 
-from . import convergence, plots, solvers
+from . import gridstudy, plots
 from .gate import metrics_table, problems
 from .results import CaseResults, Scan, not_converged, scan
+from .studies import convergence_frame, scales, study_frame
 
 CSS = """
 body{font-family:system-ui,sans-serif;margin:1.5em;max-width:1400px;color:#222}
@@ -53,8 +55,10 @@ def _fmt(v: Any) -> str:
     return _e(v)
 
 
-def table_html(frame: pd.DataFrame, *, status: str | None = None, left: int = 0) -> str:
-    """An HTML table; rows coloured by a boolean column ``status`` (pass / fail)."""
+def table_html(frame: pd.DataFrame, *, status: str | None = None, left: int = 0,
+               row_class: Callable[[pd.Series], str] | None = None) -> str:
+    """An HTML table; rows coloured by a boolean column ``status`` (pass / fail), or given
+    the class ``row_class(row)`` (none if it returns '')."""
     head = "".join(f'<th class="{"l" if i < left else ""}">{_e(c)}</th>'
                    for i, c in enumerate(frame.columns))
     body = []
@@ -63,51 +67,12 @@ def table_html(frame: pd.DataFrame, *, status: str | None = None, left: int = 0)
         if status is not None:
             ok = str(row[status]).lower() in ("true", "1")
             cls = ' class="pass"' if ok else ' class="fail"'
+        elif row_class is not None and row_class(row):
+            cls = f' class="{_e(row_class(row))}"'
         cells = "".join(f'<td class="{"l" if i < left else ""}">{_fmt(v)}</td>'
                         for i, v in enumerate(row.tolist()))
         body.append(f"<tr{cls}>{cells}</tr>")
     return f"<table><tr>{head}</tr>{''.join(body)}</table>"
-
-
-def _scales(case: CaseResults) -> dict[str, tuple[float, float]]:
-    return {p.get("param", ""): (float(p.get("hertz_a0", math.nan)),
-                                 float(p.get("hertz_p0", math.nan)))
-            for p in case.manifest.get("points", [])}
-
-
-def convergence_frame(case: CaseResults) -> pd.DataFrame:
-    """Observed order and GCI of p_max and σ_VM,max from the three finest grids of every
-    solver whose cell size varies across the sweep points (last output step)."""
-    rows = []
-    summary = case.summary
-    if summary.empty:
-        return pd.DataFrame()
-    last = summary.sort_values("step").groupby(["solver", "param"], sort=False).tail(1)
-    if "cell_size" not in last.columns:
-        return pd.DataFrame()
-    for solver, sub in last.groupby("solver", sort=False):
-        if solvers.record(solver).closed_form:
-            continue
-        sub = sub.assign(h=sub["cell_size"]).dropna(subset=["h"]).drop_duplicates("h")
-        sub = sub.sort_values("h")
-        if len(sub) < 3:
-            continue
-        three = sub.head(3)
-        a0, p0 = _scales(case).get(three["param"].iloc[0], (math.nan, math.nan))
-        for q in ("p_max", "vm_max"):
-            f = tuple(float(v) for v in three[q])
-            if not all(math.isfinite(v) for v in f):
-                continue
-            st = convergence.study(f, tuple(float(v) for v in three["h"]))
-            rows.append({
-                "solver": solver, "quantity": q,
-                "h1/a0": st.h[0] / a0, "h2/a0": st.h[1] / a0, "h3/a0": st.h[2] / a0,
-                "f1/p0": st.f[0] / p0, "f2/p0": st.f[1] / p0, "f3/p0": st.f[2] / p0,
-                "order p": st.p, "f_ext/p0": st.f_ext / p0, "GCI21 [%]": 100 * st.gci_fine,
-                "GCI32 [%]": 100 * st.gci_coarse, "GCI32/(r^p GCI21)": st.asymptotic,
-                "converging": st.converging,
-            })
-    return pd.DataFrame(rows)
 
 
 def _worst(metrics: pd.DataFrame) -> pd.DataFrame:
@@ -123,13 +88,13 @@ def case_section(case: CaseResults) -> str:
     """The HTML section of one case: header, summary, fields per sweep point, sweep,
     metrics, grid convergence, Dask check and provenance."""
     mf, name = case.manifest, case.name
-    scales = _scales(case)
+    point_scales = scales(case)
     parts = [*_header(case)]
     if not case.summary.empty:
-        parts += _summary(case, scales)
+        parts += _summary(case, point_scales)
     for param in dict.fromkeys(mf.get("params", [""])):
-        parts += _fields(case, param, scales)
-    sweep = plots.sweep_figure(case.summary, scales, f"Sweep: {name}") \
+        parts += _fields(case, param, point_scales)
+    sweep = plots.sweep_figure(case.summary, point_scales, f"Sweep: {name}") \
         if not case.summary.empty else None
     if sweep is not None:
         parts.append('<h3>Sweep</h3><div class="sweep">' + _fig(sweep, "sweep") + "</div>")
@@ -242,21 +207,47 @@ def _metrics(case: CaseResults) -> list[str]:
     return parts
 
 
+def _study_row_class(row: pd.Series) -> str:
+    return "" if row["status"] in gridstudy.SETTLED else "bad"
+
+
 def _convergence(case: CaseResults) -> list[str]:
-    """Observed orders and GCIs of the case's grid study, or how to run one."""
+    """Observed orders and GCIs of the run's grid studies (``run --convergence``) and of a
+    grid-study sweep, or how to make one."""
     name = case.name
     parts = [f'<h3 id="convergence-{_e(name)}">Grid convergence</h3>'
              '<div class="convergence">']
+    study = study_frame(case)
+    if not study.empty:
+        bad = study[study["status"].map(lambda v: v not in gridstudy.SETTLED)]
+        entry = case.manifest.get("convergence")
+        ratio = entry.get("ratio", gridstudy.RATIO) if isinstance(entry, dict) else \
+            gridstudy.RATIO
+        parts.append(
+            "<p>Grid studies of this run (<code>--convergence</code>): every numerical "
+            f"solver on its own grid (1, the run's results) and two grids coarser by at "
+            f"least {_e(ratio)} each (2, 3); observed order p, Richardson-extrapolated "
+            "value f_ext and Roache's GCI of the finest grid (F<sub>s</sub> = 1.25), cell "
+            "sizes h in units of a0.</p>")
+        cls = "ok" if bad.empty else "bad"
+        parts.append(f'<p class="{cls}">{len(study) - len(bad)} / {len(study)} quantities '
+                     "converged or exact" + (f"; {len(bad)} not converged (flagged, not "
+                                             "gated yet): " + _e(", ".join(dict.fromkeys(
+                                                 bad["quantity"]))) if len(bad) else "")
+                     + "</p>")
+        table = table_html(study, left=5, row_class=_study_row_class)
+        parts.append(f"<div class='scroll'>{table}</div>" if len(study) > 40 else table)
     conv = convergence_frame(case)
-    if conv.empty:
-        parts.append("<p>No grid study in these results (needs three sweep points of "
-                     "different cell size). Run e.g. <code>contact-vv sweep "
-                     f"{_e(case.manifest.get('case', name))} --param grid.nx=21,41,81 --param "
-                     "grid.ny=21,41,81</code>.</p>")
-    else:
+    if not conv.empty:
         parts.append("<p>Observed order p and Roache's GCI (F<sub>s</sub> = 1.25) from the "
-                     "three finest grids; cell sizes h in units of a0.</p>")
+                     "three finest grids of the sweep; cell sizes h in units of a0.</p>")
         parts.append(table_html(conv, status="converging", left=2))
+    if study.empty and conv.empty:
+        ref = _e(case.manifest.get("case", name))
+        parts.append("<p>No grid study in these results. Run <code>contact-vv run "
+                     f"{ref} --convergence</code>, or a sweep of three grids, e.g. "
+                     f"<code>contact-vv sweep {ref} --param grid.nx=21,41,81 --param "
+                     "grid.ny=21,41,81</code>.</p>")
     parts.append("</div>")
     return parts
 
@@ -281,8 +272,12 @@ def provenance_html(mf: dict[str, Any]) -> str:
     units = pd.DataFrame(mf.get("units", []))
     walls = ""
     if not units.empty:
-        walls = table_html(units[["solver", "param", "wall_s"]].rename(
-            columns={"wall_s": "wall [s]"}), left=2)
+        cols = ["solver", "param", "wall_s"]
+        if "grid" in units.columns:  # run --convergence: the coarse grids' runs too
+            grid = pd.to_numeric(units["grid"], errors="coerce").fillna(1)
+            units = units.assign(grid=grid.astype(int))
+            cols.insert(2, "grid")
+        walls = table_html(units[cols].rename(columns={"wall_s": "wall [s]"}), left=2)
     overrides = mf.get("overrides") or {}
     rows = [
         ("case file", mf.get("case_file")), ("case file SHA-256", mf.get("case_sha256")),
@@ -328,10 +323,13 @@ def render(results: Scan, out: Path) -> str:
         n_ok = int(m["passed"].astype(str).str.lower().isin(["true", "1"]).sum()) \
             if not m.empty else 0
         bad = len(not_converged(case.summary))
+        grid = len(gridstudy.unsettled(case.convergence))
         status = "ok" if n_ok == len(m) and not bad else "bad"
         toc.append(f'<li><a href="#case-{_e(case.name)}">{_e(case.name)}</a> '
                    f'<span class="{status}">{n_ok}/{len(m)} metrics passed'
-                   + (f", {bad} not converged" if bad else "") + "</span></li>")
+                   + (f", {bad} not converged" if bad else "") + "</span>"
+                   + (f' <span class="bad">{grid} quantities not grid-converged</span>'
+                      if grid else "") + "</li>")
     warn = ""
     if results.incomplete or results.damaged:
         items = "".join(f"<li><b>{_e(k)}</b>: {_e(v)}</li>"

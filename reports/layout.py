@@ -5,6 +5,9 @@
     DIR/<case>/manifest.json                      written last: the run is complete
     DIR/<case>/summary.csv                        one row per (solver, param, step)
     DIR/<case>/metrics.csv                        one row per compared quantity
+    DIR/<case>/convergence.csv                    run --convergence: one row per (solver,
+                                                  param, step, gated quantity) of the
+                                                  three-grid studies (reports.gridstudy)
     DIR/<case>/fields/<solver>/<param>/step_NNNN.npz   surface fields and planes
     DIR/<case>/fields/<solver>/<param>/step_NNNN.vtu   FEM meshes (ParaView)
     DIR/<case>/fields/<solver>/<param>/step_NNNN_surface.vtu   grid steps: surface cells
@@ -14,6 +17,8 @@
     DIR/.<case>.lock                              locked by the run of <case> in progress
 
 ``<param>`` is the sweep label (``mu=0.25``) or ``base`` for a case without a sweep.
+The fields are those of the run's own grid; the coarser grids of a grid study write no
+fields, only ``convergence.csv`` (and their records in the manifest's ``units``).
 A run writes into the staging directory and renames it to ``DIR/<case>`` only after the
 manifest is written, so a case directory is either complete or absent.
 """
@@ -26,12 +31,14 @@ from pathlib import Path
 MANIFEST = "manifest.json"
 SUMMARY = "summary.csv"
 METRICS = "metrics.csv"
+CONVERGENCE = "convergence.csv"
 FIELDS = "fields"
 PARTIAL_SUFFIX = ".partial"
 FAILED = "failed.json"
 
 #: names a case directory may hold; a directory with none of them is not a result
-OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, FIELDS, "sweep.png", "sweep_check.json"})
+OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, FIELDS, "sweep.png",
+                       "sweep_check.json"})
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9._=+-]")
 

@@ -91,6 +91,8 @@ class CasePlan:
     sweep: dict[str, Any] | None = None
     dir_name: str = ""
     staging: Path | None = None  # set by the runner: where output steps are streamed
+    convergence: bool = False  # run --convergence: grid studies (reports.gridstudy)
+    grids: list[Any] = field(default_factory=list)  # their coarse runs (GridRun)
 
     def units(self) -> list[tuple[int, str]]:
         """(point index, solver) pairs to run, point-major, solvers in registry order."""
@@ -132,7 +134,8 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
               points: list[Case] | None = None, sweep: dict[str, Any] | None = None,
               dir_name: str | None = None, limits: Limits | None = None) -> CasePlan:
     """Load and validate a case (``CaseError`` on bad input, or a unit beyond the
-    ``limits``) and plan its runs."""
+    ``limits``) and plan its runs (the grid studies of ``run --convergence`` are added by
+    :func:`reports.gridstudy.add_grids`)."""
     source = case_path(ref)
     if points is None:
         points = load_case(source, quick=quick, overrides=overrides)

@@ -71,6 +71,16 @@ class CaseResults:
         folder = layout.unit_dir(self.path, solver, param)
         return {f.stem: read_result(f, read_table) for f in sorted(folder.glob("*.csv"))}
 
+    @property
+    def convergence(self) -> pd.DataFrame:
+        """The grid studies of ``run --convergence`` (an empty table without them)."""
+        from .gridstudy import COLUMNS, read_convergence
+
+        path = self.path / layout.CONVERGENCE
+        if not path.exists():
+            return pd.DataFrame(columns=COLUMNS)
+        return read_result(path, read_convergence)
+
     def point(self, param: str) -> dict[str, Any]:
         """The case parameters (as recorded) of one sweep point."""
         for p in self.manifest.get("points", []):
@@ -79,7 +89,7 @@ class CaseResults:
         return {}
 
     def check_files(self) -> None:
-        """Read every output step, solver table and the sweep check once
+        """Read every output step, solver table, the sweep check and the grid studies once
         (:class:`DamagedResult` on the first that cannot be read)."""
         for solver in self.manifest.get("solvers", []):
             for param in dict.fromkeys(self.manifest.get("params", [""])):
@@ -88,6 +98,7 @@ class CaseResults:
                 self.tables(solver, param)
         if (self.path / SWEEP_CHECK).exists():
             read_result(self.path / SWEEP_CHECK, read_sweep_check)
+        _ = self.convergence
 
 
 @dataclass

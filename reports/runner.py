@@ -10,7 +10,10 @@ over each output step as soon as it is computed (``on_output``, :mod:`reports.so
 and the serial executor writes it into the staging directory at once, so an interrupted
 long run keeps the steps it finished there (``fields/<solver>/<param>/``).
 Runs do not resume: re-running says so, discards the staging directory and restarts the
-case cleanly.
+case cleanly.  With ``plan.convergence`` (``run --convergence``) the coarse grids of the
+grid studies run after the case's own units, through the same executor, and
+``convergence.csv`` is written into the staging directory with the rest
+(:mod:`reports.gridstudy`).
 
 The stages live in their own modules: planning (:mod:`reports.plan`), one unit
 (:mod:`reports.units`), writing (:mod:`reports.write`), the staging directory
@@ -34,7 +37,7 @@ from tqdm.auto import tqdm
 
 from cases.result import RunResult, atomic_write_text
 
-from . import layout, manifest
+from . import gridstudy, layout, manifest
 from .compare import METRICS_COLUMNS, compare_point
 from .errors import UserError
 from .plan import CasePlan
@@ -177,6 +180,11 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     remove_dir(final)  # an older result must not outlive a newer, failing run
 
     got = _collect(plan, staging, executor, progress)
+    study = None
+    if plan.convergence and not got.failures:  # the coarse grids of the grid studies
+        fine = {(i, plan.solvers[k]): rows for (i, k), rows in got.rows.items()}
+        study = gridstudy.run(plan, executor, progress, fine)
+        got.records += study.records
     unit_wall = float(sum(r["wall_s"] for r in got.records))
     run = CaseRun(plan.dir_name, None, wall_s=time.perf_counter() - t0, unit_wall_s=unit_wall)
     if got.failures:
@@ -188,13 +196,18 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
         return run
 
     summary = summary_frame([r for key in sorted(got.rows) for r in got.rows[key]])
+    if study is not None:
+        write_csv(staging / layout.CONVERGENCE, study.table)
+        summary = gridstudy.flag_summary(summary, study.table)
     write_csv(staging / layout.SUMMARY, summary)
     parts = [got.metrics[i] for i in sorted(got.metrics) if not got.metrics[i].empty]
     metrics = pd.concat(parts, ignore_index=True) if parts else \
         pd.DataFrame(columns=METRICS_COLUMNS)
     write_csv(staging / layout.METRICS, metrics)
-    manifest.write(staging, {**_manifest_body(plan, got, t0, unit_wall, sources),
-                             **extra_manifest})
+    body = _manifest_body(plan, got, t0, unit_wall, sources)
+    if plan.convergence:
+        body["convergence"] = gridstudy.manifest_entry(plan)
+    manifest.write(staging, {**body, **extra_manifest})
     remove_dir(final)
     os.replace(staging, final)
     run.path, run.metrics = final, metrics

@@ -13,7 +13,9 @@ Every solver is a package exposing the same protocol:
 The record adds what the reports need to know of a solver: its error budget against the
 exact solution (the default tolerance of a pair is the sum of its two budgets, see
 :mod:`reports.tolerances`), its plot style, its representative cell size, and whether it
-is a closed form (which may leave NaN where it says nothing and has no grid).  Packages
+is a closed form (which may leave NaN where it says nothing and has no grid), and how to
+refine or coarsen its discretisation for a grid study (``refine(case, factor)``: the
+case grid for ``ic``, ``fem.h`` for ``fem``, none for closed forms).  Packages
 are imported only when used, so a solver whose package fails to import is reported as
 unavailable without breaking the others.  Adding a solver is one record here and one
 package.
@@ -48,10 +50,10 @@ from __future__ import annotations
 import importlib
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
-from cases.model import Case
+from cases.model import Case, CaseError
 from cases.result import Cost, RunResult
 
 from .errors import SolverUnavailable
@@ -106,6 +108,33 @@ def no_cell(case: Case) -> float:
     return math.nan
 
 
+def _cells(n: int, factor: float, key: str) -> int:
+    """``n`` cells refined by ``factor`` (coarsened when it is below 1): the nearest count
+    of the same parity (an odd count keeps a cell centred on the axis, an even one a cell
+    face there) that changes the cell size by at least ``factor``."""
+    m = math.ceil(n * factor - 1e-9) if factor > 1 else math.floor(n * factor + 1e-9)
+    if (m - n) % 2:
+        m += 1 if factor > 1 else -1
+    if m < 4:
+        raise CaseError(f"{key} = {n}: a grid {1 / factor:g} times coarser has {m} cells "
+                        "(at least 4 needed); refine the grid for a grid-convergence study")
+    return m
+
+
+def refine_grid(case: Case, factor: float) -> Case:
+    """``case`` on a grid whose cells are ``factor`` times smaller (larger when ``factor``
+    < 1): ``grid.nx``, ``grid.ny`` scaled, the extents and everything else unchanged."""
+    g = case.grid
+    grid = replace(g, nx=_cells(g.nx, factor, "grid.nx"), ny=_cells(g.ny, factor, "grid.ny"))
+    return case.with_changes(grid=grid)
+
+
+def refine_fem(case: Case, factor: float) -> Case:
+    """``case`` with the FEM's contact-zone element size ``fem.h`` divided by ``factor``
+    (the block, the penalty in units of E*/h and the output grid unchanged)."""
+    return case.with_changes(fem=replace(case.fem, h=case.fem.h / factor))
+
+
 @dataclass(frozen=True)
 class SolverRecord:
     """What the reports know of one solver (module doc)."""
@@ -115,6 +144,9 @@ class SolverRecord:
     budget: Callable[[str, str], float] = grid_budget
     style: Mapping[str, Any] = field(default_factory=lambda: {"ls": "-."})
     cell_size: Callable[[Case], float] = grid_cell
+    #: the same case with cells ``factor`` times smaller (coarser below 1), for grid
+    #: studies (``run --convergence``); None: the solver has no grid to refine
+    refine: Callable[[Case, float], Case] | None = None
     closed_form: bool = False
     solve_attr: str = "solve"
     supports_attr: str = "supports"
@@ -137,9 +169,10 @@ class SolverRecord:
 #: solver name -> record; the order is the order of columns, rows and pairs (the second
 #: solver of a pair is its reference).
 REGISTRY: dict[str, SolverRecord] = {
-    "ic": SolverRecord("ic", "halfspace", style={"color": "C0", "ls": "-", "marker": "o",
-                                                 "ms": 3}),
+    "ic": SolverRecord("ic", "halfspace", refine=refine_grid,
+                       style={"color": "C0", "ls": "-", "marker": "o", "ms": 3}),
     "fem": SolverRecord("fem", "fem_reference", budget=fem_budget, cell_size=fem_cell,
+                        refine=refine_fem,
                         style={"color": "C1", "ls": "--", "marker": "s", "ms": 3}),
     "analytic": SolverRecord("analytic", "analytic", budget=closed_form_budget,
                              cell_size=no_cell, closed_form=True,
