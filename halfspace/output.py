@@ -49,6 +49,7 @@ def step_result(case: Case, sol: StepSolution, stresses: StressEvaluator, *, ste
         slip_area=float(np.count_nonzero(sol.status == SLIP) * dA),
         iterations=sol.iterations, converged=True, wall_s=wall_s,
         approach=st.approach, shift_x=st.shift_x, shift_y=st.shift_y,
+        x0=x_plane, y0=y_plane,  # where the planes were sampled (the nearest cell centres)
         residual_n=sol.residual_n, residual_t=sol.residual_t,
     )
     surface = dict(p_n=st.p_n, p_x=st.p_x, p_y=st.p_y, gap=sol.gap, slip_x=sol.slip_x,

@@ -143,6 +143,26 @@ def test_halfspace_step_roundtrips(tmp_path):
         abs=1e-12)
 
 
+def test_off_grid_planes_are_drawn_where_the_halfspace_sampled_them(tmp_path):
+    """stress.x0, y0 between cell centres: the half-space solver samples its planes
+    through the nearest centres and reports them (x0, y0 scalars); the .vtu planes stand
+    there, not at the requested point half a cell away."""
+    import halfspace
+
+    case = load_case("hertz", quick=True, overrides={"stress.x0": 0.013,
+                                                      "stress.y0": -0.011})[0]
+    step = halfspace.solve(case).steps[0]
+    i, j = case.grid.nearest_cell(0.013, -0.011)
+    assert (step.scalars["x0"], step.scalars["y0"]) == (case.grid.x[i], case.grid.y[j])
+    assert abs(step.scalars["x0"] - 0.013) > 1e-3  # really off the requested point
+    vtk.write_step(tmp_path, 0, step, case.stress.x0, case.stress.y0)
+    planes = read(tmp_path / "step_0000_planes.vtu")
+    xz = planes.points[:, 1] == step.scalars["y0"]
+    yz = planes.points[:, 0] == step.scalars["x0"]
+    assert xz.sum() + yz.sum() == planes.points.shape[0] + (yz & xz).sum()
+    assert xz.any() and yz.any()
+
+
 def test_cli_run_writes_them_beside_the_steps(tmp_path):
     out = tmp_path / "res"
     assert main(["run", "hertz", "--quick", "--solver", "ic", "--no-progress",
