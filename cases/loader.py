@@ -32,6 +32,7 @@ BUNDLED = (
     "pin_on_disk_orthotropic",
     "fretting_orthotropic",
     "dissimilar",
+    "fretting_isotropic",
 )
 def case_path(name_or_path: str | Path) -> Path:
     """Resolve a bundled case name (file stem in ``cases/``) or a path to a TOML file."""

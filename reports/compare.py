@@ -14,6 +14,11 @@ traction itself, and a worn contact, whose pressure drops almost as a step at th
 (Argatov's limit is uniform pressure), makes that fraction O(1) at any grid size; the
 near-edge σ_VM follows the edge traction (its gradient ∝ jump/distance).  The L2 norms,
 the semi-widths and the contact area still measure the edge.
+
+Fretting runs also carry per-cycle tables (``loops``: cycle, displacement, Qx, Qy;
+``cycles``: cycle, energy, ...); at an output step whose ``cycle`` both solvers' tables
+hold, the loop (``loop_q``) and the dissipated energy (``energy``) of that cycle are
+compared too (:func:`compare_tables`); a cycle only one solver has is skipped.
 """
 
 from __future__ import annotations
@@ -31,6 +36,7 @@ from cases.model import Case
 from cases.result import RunResult, StepResult, vm_max_location
 
 from . import tolerances as tol
+from .cycles import compare_tables, friction_scale
 
 METRICS_COLUMNS = ["quantity", "pair", "metric", "value", "tolerance", "passed"]
 EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key"]
@@ -294,6 +300,7 @@ def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float
 def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
     """metrics.csv rows for one sweep point: every pair, every common output step."""
     a0, p0 = case.hertz_scales
+    mu_P = friction_scale(case)
     records = []
     for sa_name, sb_name in pairs(list(results)):
         pair = f"{sa_name}-{sb_name}"
@@ -303,6 +310,10 @@ def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
             sa, sb = steps_a[n], steps_b[n]
             rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=case.stress.x0,
                                  y0=case.stress.y0)
+            cycle = _scalar(sb, "cycle")
+            if math.isfinite(cycle):
+                rows += compare_tables(results[sa_name].tables, results[sb_name].tables,
+                                       cycle, mu_P)
             for quantity, metric, value in rows:
                 limit, key = tol.tolerance(case, pair, quantity, metric)
                 records.append({

@@ -15,6 +15,9 @@ a_x, a_y          cells               contact semi-widths through the centre
 contact_area,     cells               equivalent radius √(A/π) of the contact / stick zone
 stick_area
 vm_max_loc        cells, a0           distance between the σ_VM maxima
+loop_q            max                 fretting loop Q(δ) of an output cycle (table
+                                      ``loops``), max |Q_A − Q_B| / μP over its points
+energy            rel                 energy dissipated in that cycle (table ``cycles``)
 ================  ==================  ===================================================
 
 Metrics, with A the first and B the second (reference) solver of the pair:
@@ -27,7 +30,11 @@ points), where a cell average and a point value of a traction that drops to zero
 the cell differ by a fraction of the traction itself — O(1) for the step-like pressure
 edge of a worn contact at any grid size (:mod:`reports.compare`); the L2 norms, the
 semi-widths and the contact area still measure the edge;
-``rel`` = |A − B| / |B|; ``cells`` = a length difference in units of the coarser of the
+``rel`` = |A − B| / |B|; for ``loop_q`` ``max`` = max over the cycle's loop points of
+|Q_A − Q_B| (the tangential load vector on body a) / μP, μ the friction coefficient along
+the path direction and P the case's Hertz load (:func:`reports.compare.friction_scale`),
+the points of the two loops matched by their imposed displacements (loops of different
+paths are not compared); ``cells`` = a length difference in units of the coarser of the
 two solvers' cell sizes; ``a0`` = a length difference in units of the Hertz radius.
 
 Tolerance keys: the quantity name for a single-metric quantity (``p_max``, ``a_x``), else
@@ -55,6 +62,8 @@ PLANE_FIELDS = {"vm_xz": "xz", "vm_yz": "yz"}
 REL_SCALARS = ("p_max", "w_max", "wear_volume", "vm_max")
 LENGTH_SCALARS = ("a_x", "a_y")
 AREA_SCALARS = ("contact_area", "stick_area")
+#: quantities computed from the solvers' tables per cycle (fretting): table, metric
+TABLE_QUANTITIES = {"loop_q": ("loops", "max"), "energy": ("cycles", "rel")}
 
 #: quantity -> its metrics, in the order rows are written.
 METRICS: dict[str, tuple[str, ...]] = {
@@ -63,6 +72,7 @@ METRICS: dict[str, tuple[str, ...]] = {
     **{q: ("rel",) for q in REL_SCALARS},
     **{q: ("cells",) for q in LENGTH_SCALARS + AREA_SCALARS},
     "vm_max_loc": ("cells", "a0"),
+    **{q: (m,) for q, (_, m) in TABLE_QUANTITIES.items()},
 }
 
 def tolerance_key(quantity: str, metric: str) -> str:

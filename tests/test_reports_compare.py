@@ -12,7 +12,7 @@ import test_cli_fakes as fakes
 
 from cases.loader import load_case
 from cases.model import CaseError
-from cases.result import Plane, StepResult
+from cases.result import Plane, RunResult, StepResult
 from reports import tolerances as tol
 from reports.compare import (
     common_axis,
@@ -23,6 +23,7 @@ from reports.compare import (
     interior,
     sample,
 )
+from reports.cycles import compare_tables, friction_scale
 
 README = Path(__file__).resolve().parent.parent / "cases" / "README.md"
 
@@ -182,3 +183,71 @@ def test_readme_documents_every_case_key():
                     assert f"`{name}`" in text, f"{table}.{name}"
         else:
             assert f"`{table}`" in text or f"[{table}]" in text, table
+
+
+# ------------------------------------------------------------------ fretting tables
+
+
+def _fretting_run(solver: str, cycles: list[float], dQ: float = 0.0, energy_factor=1.0
+                  ) -> RunResult:
+    """A fretting result: one output step per cycle (step n = cycle n), loops through
+    +1 -> -1 -> +1 with Qx = 10 δ (+ ``dQ`` at the third point), energy 2 per cycle
+    (× ``energy_factor``)."""
+    x = np.linspace(-1.0, 1.0, 5)
+    path = np.array([0.5, 0.0, -0.5, -1.0, -0.5, 0.0, 0.5, 1.0])
+    loops = {k: [] for k in ("cycle", "displacement", "Qx", "Qy")}
+    for c in cycles:
+        Qx = 10.0 * path
+        Qx[2] += dQ
+        loops["cycle"] += [c] * path.size
+        loops["displacement"] += list(path)
+        loops["Qx"] += list(Qx)
+        loops["Qy"] += [0.0] * path.size
+    tables = {"loops": {k: np.array(v, float) for k, v in loops.items()},
+              "cycles": {"cycle": np.array(cycles, float),
+                         "energy": 2.0 * energy_factor * np.ones(len(cycles))}}
+    steps = [StepResult(scalars={"step": int(c), "cycle": float(c)}, x=x, y=x, surface={})
+             for c in cycles]
+    return RunResult(case="f", solver=solver, param="", steps=steps, tables=tables)
+
+
+def test_loop_and_energy_metrics_give_a_known_difference_exactly():
+    a = _fretting_run("ic", [1.0], dQ=0.3, energy_factor=1.05)
+    b = _fretting_run("analytic", [1.0])
+    rows = {(q, m): v for q, m, v in compare_tables(a.tables, b.tables, 1.0, mu_P=6.0)}
+    assert rows == {("loop_q", "max"): pytest.approx(0.3 / 6.0, rel=1e-14),
+                    ("energy", "rel"): pytest.approx(0.05, rel=1e-12)}
+    # Qy counts too: |ΔQ| is the norm of the vector difference
+    a.tables["loops"]["Qy"][2] = 0.4  # at the point of ΔQx = 0.3
+    rows = {(q, m): v for q, m, v in compare_tables(a.tables, b.tables, 1.0, mu_P=6.0)}
+    assert rows[("loop_q", "max")] == pytest.approx(0.5 / 6.0, rel=1e-14)
+    # loops through other displacements (other steps) are not compared point by point
+    a.tables["loops"]["displacement"] = a.tables["loops"]["displacement"] * 0.9
+    rows = {(q, m) for q, m, _ in compare_tables(a.tables, b.tables, 1.0, mu_P=6.0)}
+    assert rows == {("energy", "rel")}
+
+
+def test_a_cycle_only_one_solver_has_is_skipped():
+    a = _fretting_run("ic", [1.0, 2.0], dQ=0.3)
+    b = _fretting_run("analytic", [1.0])
+    assert compare_tables(a.tables, b.tables, 2.0, mu_P=6.0) == []
+    assert compare_tables(b.tables, a.tables, 2.0, mu_P=6.0) == []
+    assert compare_tables({}, b.tables, 1.0, mu_P=6.0) == []
+
+
+def test_compare_point_adds_the_cycle_metrics_at_common_output_cycles():
+    case = load_case("fretting_isotropic", quick=True)[0]
+    mu_P = friction_scale(case)
+    a0, p0 = case.hertz_scales
+    assert mu_P == pytest.approx(0.3 * 2 * math.pi * a0**2 * p0 / 3, rel=1e-14)
+    assert mu_P == pytest.approx(0.3 * 778.4068, rel=1e-6)  # Hertz at approach 0.008
+    a = _fretting_run("ic", [1.0, 2.0], dQ=0.3, energy_factor=0.99)
+    b = _fretting_run("analytic", [1.0])
+    m = compare_point(case, {"ic": a, "analytic": b})
+    got = m[m["quantity"].isin(["loop_q", "energy"])].set_index(["quantity", "metric"])
+    assert list(got["step"]) == [1, 1] and list(got["cycle"]) == [1.0, 1.0]
+    assert got.loc[("loop_q", "max"), "value"] == pytest.approx(0.3 / mu_P, rel=1e-12)
+    assert got.loc[("energy", "rel"), "value"] == pytest.approx(0.01, rel=1e-9)
+    assert got.loc[("loop_q", "max"), "tolerance_key"] == "default:loop_q"
+    assert got.loc[("energy", "rel"), "tolerance"] == pytest.approx(
+        tol.budget("ic", "energy", "rel") + tol.budget("analytic", "energy", "rel"))
