@@ -252,10 +252,6 @@ def test_hostile_arguments(tmp_path, capsys, hang_guard, argv, code, needle):
     assert needle in err, err
 
 
-def test_hostile_inputs_are_many():
-    assert len(CASE_FILES) + 19 + 1 >= 60
-
-
 def test_sweep_labels_are_exact_and_unique(tmp_path, capsys):
     """Values equal to 6 significant digits get labels of their own (no field file of one
     overwrites the other's)."""
