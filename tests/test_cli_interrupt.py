@@ -20,7 +20,10 @@ from reports.results import scan
 TESTS = Path(__file__).resolve().parent
 ROOT = TESTS.parent
 DRIVER = f"""
-import sys
+import signal, sys
+# Ctrl-C as in a terminal, whatever this test runs under: a shell that started it in the
+# background leaves SIGINT ignored, and that disposition is inherited across exec
+signal.signal(signal.SIGINT, signal.default_int_handler)
 sys.path[:0] = [{str(ROOT)!r}, {str(TESTS)!r}]
 from reports import solvers
 import test_cli_fakes
