@@ -233,12 +233,25 @@ class Case:
         return a0, 2.0 * self.E_star * a0 / (math.pi * self.R)
 
     @property
+    def _slide_in_axes(self) -> tuple[float, float]:
+        """(d_e1, d_e2): the unit sliding direction ``load.slide_angle`` in the
+        tribological axes, rotated by β."""
+        theta = math.radians(self.load.slide_angle - self.friction.beta)
+        return math.cos(theta), math.sin(theta)
+
+    @property
     def sliding_wear_coefficient(self) -> float:
         """i_w of the gap for sliding along ``load.slide_angle``: the sum over both bodies
         of ‖d‖_i = √((i1 d_e1)² + (i2 d_e2)²) (Eq. 19-21) for the unit direction d."""
-        theta = math.radians(self.load.slide_angle - self.friction.beta)
-        c, s = math.cos(theta), math.sin(theta)
+        c, s = self._slide_in_axes
         return sum(math.hypot(b.i1 * c, b.i2 * s) for b in (self.a, self.b))
+
+    @property
+    def sliding_friction(self) -> float:
+        """μ along ``load.slide_angle``: ‖d‖*_μ = √((μ1 d_e1)² + (μ2 d_e2)²), the friction
+        force per unit pressure opposing gross slip along d (Eq. 13)."""
+        c, s = self._slide_in_axes
+        return math.hypot(self.friction.mu1 * c, self.friction.mu2 * s)
 
     @property
     def expected_radius(self) -> float:

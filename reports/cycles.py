@@ -18,14 +18,10 @@ _TINY = 1e-12
 
 def friction_scale(case: Case) -> float:
     """μP of a case: P its Hertz load (2π a0² p0 / 3, the held load or the load of the
-    held approach) and μ the friction coefficient along ``load.slide_angle``,
-    √((μ1 cos θ)² + (μ2 sin θ)²) with θ = slide_angle − β: the friction force along the
-    path in gross slip (Eq. 13: t·d = −‖d‖*_μ)."""
+    held approach) and μ the friction coefficient along ``load.slide_angle``
+    (:attr:`cases.model.Case.sliding_friction`)."""
     a0, p0 = case.hertz_scales
-    f = case.friction
-    theta = math.radians(case.load.slide_angle - f.beta)
-    mu = math.hypot(f.mu1 * math.cos(theta), f.mu2 * math.sin(theta))
-    return mu * 2.0 * math.pi * a0 * a0 * p0 / 3.0
+    return case.sliding_friction * 2.0 * math.pi * a0 * a0 * p0 / 3.0
 
 
 def _cycle_rows(table: Mapping[str, object] | None, cycle: float) -> np.ndarray | None:
