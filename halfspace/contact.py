@@ -24,12 +24,12 @@ from .normal import (
     ContactNotConverged,
     NormalSolution,
     normal_residual,
-    polonsky_keer,
     roundoff_floor,
-    uzawa_normal,
 )
 from .operator import SurfaceOperator
 from .tangential import TangentialSolution, solve_tangential, tangential_residual
+from .tangential_load import shift_for_resultant
+from .window import WindowedNormal
 
 SLIP_RTOL = 1e-6  # a contact cell slips when its traction is on the friction limit
 
@@ -93,25 +93,17 @@ class ContactSolver:
         self.method, self.tol, self.max_iter = method, tol, max_iter
         self.op = SurfaceOperator(grid.nx, grid.ny, grid.dx, grid.dy, mat)
         self.dA = grid.dx * grid.dy
-        self.L_nn = float(np.abs(self.op.spectra["zz"]).max())
+        self.normal_solver = WindowedNormal((grid.nx, grid.ny), grid.dx, grid.dy, mat, method,
+                                            tol, max_iter, full_op=self.op)
         self._boxes: dict[tuple[int, int], tuple[SurfaceOperator, float]] = {}
         self.c_n = 1.0 / self.op.self_zz
         self.c_t = 1.0 / self.op.self_tt
 
     # ------------------------------------------------------------------ pieces
     def _normal(self, h, P, approach, p0, wear_rate=None) -> NormalSolution:
-        """Normal solve; ``wear_rate`` k_w adds the implicit wear k_w p_n to the gap."""
-        kw = dict(P=P, approach=approach, p0=p0, tol=self.tol, max_iter=self.max_iter)
-        if wear_rate is None:
-            apply, L = self.op.normal, self.L_nn
-        else:
-            def apply(p):
-                return self.op.normal(p) + wear_rate * p
-
-            L = self.L_nn + float(wear_rate.max())
-        if self.method == "cg":
-            return polonsky_keer(apply, h, self.dA, self.c_n, **kw)
-        return uzawa_normal(apply, h, self.dA, self.c_n, 1.0 / L, **kw)
+        """Normal solve on the potential-contact window (:mod:`halfspace.window`);
+        ``wear_rate`` k_w adds the implicit wear k_w p_n to the gap."""
+        return self.normal_solver.solve(h, P=P, approach=approach, p0=p0, wear_rate=wear_rate)
 
     def _box_operator(self, n: tuple[int, int]) -> tuple[SurfaceOperator, float]:
         """Tangential operator on an n-cell sub-grid and its Lipschitz bound (cached)."""
@@ -122,10 +114,11 @@ class ContactSolver:
             self._boxes[n] = (op, _tangential_bound(op))
         return self._boxes[n]
 
-    def _tangential(self, shift, u_tn, g_prev, p_n, p0) -> TangentialSolution:
-        """Tractions for fixed p_n.  Cells with p_n = 0 carry none, so the problem lives
-        on the bounding box of the contact: the same coefficients (they depend on the
-        offset only, Eq. 42) convolved on a smaller padded grid."""
+    def _tangential(self, shift, u_tn, g_prev, p_n, p0, tol=None) -> TangentialSolution:
+        """Tractions for fixed p_n (to the residual ``tol``, default the solver's).  Cells
+        with p_n = 0 carry none, so the problem lives on the bounding box of the contact:
+        the same coefficients (they depend on the offset only, Eq. 42) convolved on a
+        smaller padded grid."""
         b_x = shift[0] + u_tn[0] - g_prev[0]
         b_y = shift[1] + u_tn[1] - g_prev[1]
         rows, cols = np.flatnonzero(p_n.any(axis=1)), np.flatnonzero(p_n.any(axis=0))
@@ -135,7 +128,7 @@ class ContactSolver:
         op, L = self._box_operator((rows[-1] + 1 - rows[0], cols[-1] + 1 - cols[0]))
         sol = solve_tangential(op.tangential, b_x[box], b_y[box], p_n[box], self.friction, L,
                                self.c_t, p0=(p0[0][box], p0[1][box]), method=self.method,
-                               tol=self.tol, max_iter=self.max_iter)
+                               tol=tol or self.tol, max_iter=self.max_iter)
         p_x, p_y = np.zeros_like(p_n), np.zeros_like(p_n)
         p_x[box], p_y[box] = sol.p_x, sol.p_y
         return TangentialSolution(p_x, p_y, sol.iterations, sol.residual)
@@ -159,39 +152,13 @@ class ContactSolver:
         k_t = 4.0 * a_eff * self.mat.G / (2.0 - self.mat.nu)
         J = -np.eye(2) * k_t
         max_step = 2.0 * P * max(fr.mu1, fr.mu2) / k_t  # twice the gross-slip shift
-        zeta = np.asarray(shift0, float)
-        sol = self._tangential(zeta, u_tn, g_prev, p_n, p0)
-        iters = sol.iterations
-        F = np.array([sol.p_x.sum(), sol.p_y.sum()]) * self.dA - Q
         scale = max(qn, 1e-3 * P * max(fr.mu1, fr.mu2))
-        for _ in range(100):
-            if np.hypot(*F) <= self.tol * scale * 10:
-                return sol, zeta, iters
-            dz = -np.linalg.solve(J, F)
-            if np.hypot(*dz) > max_step:  # the secant flattens near gross slip
-                dz *= max_step / np.hypot(*dz)
-            zeta = zeta + dz
-            sol = self._tangential(zeta, u_tn, g_prev, p_n, (sol.p_x, sol.p_y))
-            iters += sol.iterations
-            F_new = np.array([sol.p_x.sum(), sol.p_y.sum()]) * self.dA - Q
-            if np.hypot(*F_new) >= np.hypot(*F):
-                # no progress: refresh J by finite differences at the new point (the
-                # Broyden secant can be nearly singular under strong orthotropy)
-                h_fd = 1e-3 * max_step
-                for col in range(2):
-                    e = np.zeros(2)
-                    e[col] = h_fd
-                    probe = self._tangential(zeta + e, u_tn, g_prev, p_n,
-                                             (sol.p_x, sol.p_y))
-                    iters += probe.iterations
-                    Fp = np.array([probe.p_x.sum(), probe.p_y.sum()]) * self.dA - Q
-                    J[:, col] = (Fp - F_new) / h_fd
-            else:
-                dF = F_new - F
-                J = J + np.outer(dF - J @ dz, dz) / float(dz @ dz)  # Broyden update
-            F = F_new
-        raise ContactNotConverged(
-            f"tangential load control did not converge: |Q - Q_target| = {np.hypot(*F):.3e} N")
+
+        def solve_at(zeta, start, tol):
+            return self._tangential(zeta, u_tn, g_prev, p_n, start, tol)
+
+        return shift_for_resultant(solve_at, Q, np.asarray(shift0, float), p0, J=J,
+                                   max_step=max_step, scale=scale, dA=self.dA, tol=self.tol)
 
     # ------------------------------------------------------------------ a step
     def solve(

@@ -89,6 +89,21 @@ def surface_coefficients(
     return _assemble(i_s, i_xx, i_yy, i_xy, i_x, i_y, mat)
 
 
+def normal_coefficients(xo: np.ndarray, yo: np.ndarray, dx: float, dy: float,
+                        mat: Materials) -> np.ndarray:
+    """The A_zz block of :func:`surface_coefficients` alone (Eq. 41, erratum 2): the
+    normal displacement due to a uniform unit pressure on the cell."""
+    xo, yo = np.broadcast_arrays(np.asarray(xo, float), np.asarray(yo, float))
+    t = (xo + 0.5 * dx, xo - 0.5 * dx)
+    u = (yo + 0.5 * dy, yo - 0.5 * dy)
+
+    def f(a, b):
+        return _a_asinh(a, b) + _a_asinh(b, a)
+
+    i_s = f(t[0], u[0]) - f(t[0], u[1]) - f(t[1], u[0]) + f(t[1], u[1])  # ∫∫ 1/s
+    return (1.0 - mat.nu) / (np.pi * mat.G) * i_s
+
+
 def _assemble(i_s, i_xx, i_yy, i_xy, i_x, i_y, mat: Materials) -> dict[str, np.ndarray]:
     """Combine the integrals of 1/s, t²/s³, u²/s³, tu/s³, t/s², u/s² into the blocks."""
     c = 1.0 / (np.pi * mat.G)

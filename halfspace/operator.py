@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.fft as sfft
 
-from .influence import surface_coefficients
+from .influence import normal_coefficients, surface_coefficients
 from .materials import Materials
 
 WORKERS = 1  # FFT threads; fixed so results are bit-reproducible for a given version
@@ -40,6 +40,18 @@ def kernel_spectrum(coeff: np.ndarray, shape: tuple[int, int], n: tuple[int, int
     return sfft.rfft2(k, workers=WORKERS)
 
 
+class _LazySpectra(dict):
+    """Kernel spectra computed on first access by ``build(key)``."""
+
+    def __init__(self, build):
+        super().__init__()
+        self._build = build
+
+    def __missing__(self, key: str) -> np.ndarray:
+        self[key] = value = self._build(key)
+        return value
+
+
 @dataclass
 class ConvolutionOperator:
     """A set of convolution kernels on one grid, applied by zero-padded FFT."""
@@ -58,6 +70,37 @@ class ConvolutionOperator:
         return self.backward(self.spectra[key] * self.forward(f))
 
 
+# Parity (in x, in y) of each kernel of Eq. 5 / 41 under a reflection of the offset.
+PARITY = {"xx": (1, 1), "yy": (1, 1), "zz": (1, 1), "xy": (-1, -1),
+          "xz": (-1, 1), "zx": (-1, 1), "yz": (1, -1), "zy": (1, -1)}
+
+
+def mirrored(q: np.ndarray, parity: tuple[int, int], shape: tuple[int, int]) -> np.ndarray:
+    """A kernel on the wrap-around offsets of a ``shape`` FFT grid (as
+    :func:`wrap_offsets`, zero outside |offset| < n) from its values ``q`` on the
+    offsets 0 .. n-1 of one quadrant and its parity in x and y."""
+    n0, n1 = q.shape
+    k = np.zeros(shape)
+    k[:n0, :n1] = q
+    k[shape[0] - n0 + 1:, :n1] = parity[0] * q[:0:-1, :]
+    k[:, shape[1] - n1 + 1:] = parity[1] * k[:, n1 - 1:0:-1]
+    return k
+
+
+def quadrant_offsets(nx: int, ny: int, dx: float, dy: float) -> tuple[np.ndarray, np.ndarray]:
+    """Offsets 0 .. n-1 cells along x and y (broadcastable), in mm."""
+    return np.arange(nx)[:, None] * dx, np.arange(ny)[None, :] * dy
+
+
+def normal_operator(nx: int, ny: int, dx: float, dy: float, mat: Materials) -> ConvolutionOperator:
+    """The A_zz block of Eq. 27 alone (key "zz") on an nx x ny grid."""
+    shape = padded_shape(nx, ny)
+    zz = normal_coefficients(*quadrant_offsets(nx, ny, dx, dy), dx, dy, mat)
+    k = mirrored(zz, PARITY["zz"], shape)
+    return ConvolutionOperator(n=(nx, ny), shape=shape,
+                               spectra={"zz": sfft.rfft2(k, workers=WORKERS)})
+
+
 class SurfaceOperator(ConvolutionOperator):
     """u = A p for the nine blocks of Eq. 27 on a regular grid of dx x dy cells.
 
@@ -67,17 +110,30 @@ class SurfaceOperator(ConvolutionOperator):
 
     def __init__(self, nx: int, ny: int, dx: float, dy: float, mat: Materials):
         shape = padded_shape(nx, ny)
-        xo = wrap_offsets(nx, shape[0])[:, None] * dx
-        yo = wrap_offsets(ny, shape[1])[None, :] * dy
-        c = surface_coefficients(xo, yo, dx, dy, mat)
-        keys = ["xx", "yy", "zz", "xy"] + (["xz", "yz", "zx", "zy"] if mat.K != 0 else [])
-        spectra = {k: kernel_spectrum(np.broadcast_to(c[k], shape), shape, (nx, ny)) for k in keys}
-        super().__init__(n=(nx, ny), shape=shape, spectra=spectra)
+        super().__init__(n=(nx, ny), shape=shape, spectra=_LazySpectra(self._spectrum))
+        self.dx, self.dy = dx, dy
         self.mat = mat
         self.coupled = mat.K != 0
+        self._table: dict[str, np.ndarray] | None = None
         centre = surface_coefficients(np.zeros(1), np.zeros(1), dx, dy, mat)
         self.self_zz = float(centre["zz"][0])  # diagonal of A_zz (cell on itself)
         self.self_tt = float(max(centre["xx"][0], centre["yy"][0]))
+
+    def _spectrum(self, key: str) -> np.ndarray:
+        """rfft2 of one block's kernel, built when first used (a normal solve needs
+        A_zz only; the coupling blocks exist only for K != 0)."""
+        if key not in PARITY or (key[0] != key[1] and "z" in key and not self.coupled):
+            raise KeyError(key)
+        q = self._quadrant(key)
+        return sfft.rfft2(mirrored(q, PARITY[key], self.shape), workers=WORKERS)
+
+    def _quadrant(self, key: str) -> np.ndarray:
+        offsets = quadrant_offsets(*self.n, self.dx, self.dy)
+        if key == "zz" and self._table is None:
+            return normal_coefficients(*offsets, self.dx, self.dy, self.mat)
+        if self._table is None:
+            self._table = surface_coefficients(*offsets, self.dx, self.dy, self.mat)
+        return self._table[key]
 
     def normal(self, p_n: np.ndarray) -> np.ndarray:
         """u_z due to the normal pressure alone (A_zz p_n)."""
@@ -105,11 +161,15 @@ class SurfaceOperator(ConvolutionOperator):
         return self.backward(self.spectra["xz"] * F), self.backward(self.spectra["yz"] * F)
 
     def __call__(self, p_x, p_y, p_n) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """All three components of u = A p (Eq. 27)."""
-        u_x, u_y = self.tangential(p_x, p_y)
+        """All three components of u = A p (Eq. 27); blocks of a zero traction are
+        skipped (their product is exactly zero)."""
+        tangential = np.any(p_x) or np.any(p_y)
+        zero = np.zeros(self.n)
+        u_x, u_y = self.tangential(p_x, p_y) if tangential else (zero, zero.copy())
         u_z = self.normal(p_n)
         if self.coupled:
             ux_n, uy_n = self.tangential_from_normal(p_n)
             u_x, u_y = u_x + ux_n, u_y + uy_n
-            u_z = u_z + self.normal_from_tangential(p_x, p_y)
+            if tangential:
+                u_z = u_z + self.normal_from_tangential(p_x, p_y)
         return u_x, u_y, u_z

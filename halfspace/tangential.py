@@ -115,6 +115,8 @@ def solve_tangential(
 
         def proj(v1, v2):
             nonlocal t_last
+            if mu1 == mu2:  # isotropic: the ellipses are discs
+                return _disc(v1, v2, mu1 * p_n)
             v1, v2, t_last = _ellipse(v1, v2, mu1 * p_n, mu2 * p_n, t_last)
             return v1, v2
     else:

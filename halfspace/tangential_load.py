@@ -1,0 +1,87 @@
+"""Tangential load control, step (a.1) of section 3.4: the rigid shift g_t,o whose
+tractions carry a given resultant Q (Eq. 37).
+
+The resultant is a monotone function of the shift; it is found by a quasi-Newton
+(Broyden) iteration on F(g_t,o) = sum(p_t) dA - Q, refreshed by finite differences when
+a step makes no progress (the secant can be nearly singular under strong orthotropy).
+Each evaluation of F is a tangential solve (Eq. 16).  Far from the answer those solves
+need no more accuracy than F has (inexact Newton): they stop at a residual of
+INNER_TOL_FACTOR x the relative mismatch, at most INNER_TOL_MAX.  Once the mismatch is
+met, or an inexact step fails to reduce it, every later solve is exact, and exact means
+FINAL_TOL_FACTOR x the tolerance: the resultant sums the tractions' error over the whole
+contact, so the tractions must be a little tighter than the resultant's tolerance.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from .normal import ContactNotConverged
+from .tangential import TangentialSolution
+
+INNER_TOL_FACTOR = 1e-2
+INNER_TOL_MAX = 1e-4
+FINAL_TOL_FACTOR = 0.1
+MAX_NEWTON = 100
+
+Solve = Callable[[np.ndarray, tuple[np.ndarray, np.ndarray] | None, float], TangentialSolution]
+
+
+def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
+                        p0: tuple[np.ndarray, np.ndarray] | None, *, J: np.ndarray,
+                        max_step: float, scale: float, dA: float,
+                        tol: float) -> tuple[TangentialSolution, np.ndarray, int]:
+    """(tractions, shift, tangential iterations) with ``|sum(p_t) dA - Q| <= 10 tol scale``.
+
+    ``solve(zeta, start, tol)`` gives the tractions of shift ``zeta`` from the tractions
+    ``start``; ``J`` is the initial dQ/dg_t,o, ``max_step`` caps a Newton step."""
+    exact_tol = FINAL_TOL_FACTOR * tol
+
+    def evaluate(z, start, t):
+        sol = solve(z, start, t)
+        return sol, np.array([sol.p_x.sum(), sol.p_y.sum()]) * dA - Q
+
+    sol, F = evaluate(zeta, p0, max(INNER_TOL_MAX, exact_tol))
+    iters, exact = sol.iterations, INNER_TOL_MAX <= exact_tol
+    final = exact
+    for _ in range(MAX_NEWTON):
+        if np.hypot(*F) <= tol * scale * 10:
+            if exact:
+                return sol, zeta, iters
+            sol, F = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
+            iters, exact, final = iters + sol.iterations, True, True
+            continue
+        dz = -np.linalg.solve(J, F)
+        if np.hypot(*dz) > max_step:  # the secant flattens near gross slip
+            dz *= max_step / np.hypot(*dz)
+        zeta = zeta + dz
+        t = exact_tol if final else max(exact_tol, min(
+            INNER_TOL_MAX, INNER_TOL_FACTOR * np.hypot(*F) / scale))
+        sol, F_new = evaluate(zeta, (sol.p_x, sol.p_y), t)
+        iters, exact = iters + sol.iterations, t <= exact_tol
+        if np.hypot(*F_new) >= np.hypot(*F) and not exact:
+            sol, F_new = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
+            iters, exact, final, t = iters + sol.iterations, True, True, exact_tol
+        if np.hypot(*F_new) >= np.hypot(*F):
+            J, probe_iters = _fd_jacobian(evaluate, zeta, F_new, sol, 1e-3 * max_step, t)
+            iters += probe_iters
+        else:
+            J = J + np.outer(F_new - F - J @ dz, dz) / float(dz @ dz)  # Broyden update
+        F = F_new
+    raise ContactNotConverged(
+        f"tangential load control did not converge: |Q - Q_target| = {np.hypot(*F):.3e} N")
+
+
+def _fd_jacobian(evaluate, zeta: np.ndarray, F: np.ndarray, sol: TangentialSolution,
+                 h: float, tol: float) -> tuple[np.ndarray, int]:
+    """dF/dg_t,o by forward differences of step ``h`` (same tolerance as F's solve)."""
+    J, iters = np.empty((2, 2)), 0
+    for col in range(2):
+        e = np.zeros(2)
+        e[col] = h
+        probe, Fp = evaluate(zeta + e, (sol.p_x, sol.p_y), tol)
+        iters += probe.iterations
+        J[:, col] = (Fp - F) / h
+    return J, iters
