@@ -32,11 +32,14 @@ Johnson's Boussinesq and Cerruti displacement fields, and by quadrature):
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from cases.result import STRESS_COMPONENTS, von_mises
 
-__all__ = ["LOADS", "STRESS_COMPONENTS", "cell_stress_coefficients", "point_stresses",
+__all__ = ["LOADS", "STRESS_COMPONENTS", "cell_stress_coefficients", "coefficient_table",
+           "folded_range", "parity", "point_stresses", "symmetric_table", "unfold",
            "von_mises"]
 
 LOADS = ("x", "y", "n")
@@ -201,9 +204,11 @@ def _antiderivative_y_swapped(x, y, z, nu) -> dict[str, np.ndarray]:
 
 
 def coefficient_table(kx: tuple[int, int], ky: tuple[int, int], z: float, dx: float,
-                      dy: float, nu: float) -> dict[str, dict[str, np.ndarray]]:
+                      dy: float, nu: float, loads: Sequence[str] = LOADS
+                      ) -> dict[str, dict[str, np.ndarray]]:
     """:func:`cell_stress_coefficients` for every integer offset (i dx, j dy), i in
-    [kx[0], kx[1]], j in [ky[0], ky[1]], as arrays indexed [i - kx[0], j - ky[0]].
+    [kx[0], kx[1]], j in [ky[0], ky[1]], as arrays indexed [i - kx[0], j - ky[0]];
+    only the loads in ``loads`` (default all three).
 
     Neighbouring cells share corners, so the antiderivatives of Eq. 44-48 are evaluated
     once on the corner lattice ((i ± 1/2) dx, (j ± 1/2) dy) and differenced: a quarter of
@@ -212,6 +217,8 @@ def coefficient_table(kx: tuple[int, int], ky: tuple[int, int], z: float, dx: fl
     """
     if z < 0 or not np.isfinite(z):
         raise ValueError("depth z must be finite and >= 0")
+    if not set(loads) <= set(LOADS):
+        raise ValueError(f"loads must be among {LOADS}, not {tuple(loads)!r}")
     xc = (np.arange(kx[0], kx[1] + 2) - 0.5)[:, None] * dx
     yc = (np.arange(ky[0], ky[1] + 2) - 0.5)[None, :] * dy
     zz = np.full(np.broadcast_shapes(xc.shape, yc.shape), float(z))
@@ -221,8 +228,73 @@ def coefficient_table(kx: tuple[int, int], ky: tuple[int, int], z: float, dx: fl
         return {c: (T[c][1:, 1:] - T[c][1:, :-1] - T[c][:-1, 1:] + T[c][:-1, :-1])
                 / (2.0 * np.pi) for c in STRESS_COMPONENTS}
 
-    return {
-        "x": differenced(_antiderivative_x, xc, yc),
-        "y": _swap_xy(differenced(_antiderivative_y_swapped, xc, yc)),
-        "n": differenced(_antiderivative_n, xc, yc),
+    build = {
+        "x": lambda: differenced(_antiderivative_x, xc, yc),
+        "y": lambda: _swap_xy(differenced(_antiderivative_y_swapped, xc, yc)),
+        "n": lambda: differenced(_antiderivative_n, xc, yc),
     }
+    return {ld: build[ld]() for ld in LOADS if ld in loads}
+
+
+# ---------------------------------------------------------------- parity
+
+
+def parity(load: str, comp: str) -> tuple[float, float]:
+    """Signs of B^load_comp (Eq. 33) under xo -> -xo and under yo -> -yo.
+
+    Reflecting x maps the load ``"x"`` to its opposite and flips every component with
+    one x index (sxy, sxz); likewise for y.  So B is even or odd in each offset, with
+    sign (-1)^(number of x indices of comp + [load == "x"]) for x, and the same for y.
+    """
+    if load not in LOADS or comp not in STRESS_COMPONENTS:
+        raise ValueError(f"unknown load {load!r} or component {comp!r}")
+    return ((-1.0) ** (comp[1:].count("x") + (load == "x")),
+            (-1.0) ** (comp[1:].count("y") + (load == "y")))
+
+
+def folded_range(lo: int, hi: int) -> tuple[int, int]:
+    """The range of |k| for the integers k in [lo, hi]."""
+    if lo <= 0 <= hi:
+        return 0, max(-lo, hi)
+    return min(abs(lo), abs(hi)), max(abs(lo), abs(hi))
+
+
+def _mirror_pieces(lo: int, hi: int) -> list[tuple[slice, slice, bool]]:
+    """(destination over k - lo, source over |k| - folded lo, mirrored?) for k in [lo, hi]:
+    the pieces that copy a table over :func:`folded_range` to one over [lo, hi]."""
+    n = hi - lo + 1
+    if lo >= 0:
+        return [(slice(0, n), slice(0, n), False)]
+    if hi < 0:  # all negative: |k| runs down the folded range [-hi, -lo]
+        return [(slice(0, n), slice(None, None, -1), True)]
+    return [(slice(0, -lo), slice(-lo, 0, -1), True),  # k = lo .. -1, |k| = -lo .. 1
+            (slice(-lo, n), slice(0, hi + 1), False)]
+
+
+def unfold(q: np.ndarray, kx: tuple[int, int], ky: tuple[int, int],
+           signs: tuple[float, float], out: np.ndarray | None = None) -> np.ndarray:
+    """A coefficient over the offsets [kx[0], kx[1]] x [ky[0], ky[1]] from its table ``q``
+    over |offsets| (:func:`folded_range` of each), with f(-i, j) = signs[0] f(i, j) and
+    f(i, -j) = signs[1] f(i, j) (:func:`parity`); written into ``out`` if given."""
+    if out is None:
+        out = np.empty((kx[1] - kx[0] + 1, ky[1] - ky[0] + 1))
+    for dst_x, src_x, neg_x in _mirror_pieces(*kx):
+        for dst_y, src_y, neg_y in _mirror_pieces(*ky):
+            sign = (signs[0] if neg_x else 1.0) * (signs[1] if neg_y else 1.0)
+            np.multiply(q[src_x, src_y], sign, out=out[dst_x, dst_y])
+    return out
+
+
+def symmetric_table(kx: tuple[int, int], ky: tuple[int, int], z: float, dx: float,
+                    dy: float, nu: float, loads: Sequence[str] = LOADS
+                    ) -> dict[str, dict[str, np.ndarray]]:
+    """:func:`coefficient_table` over the same offsets, evaluated on one quadrant.
+
+    Each coefficient of Eq. 33 is even or odd in each offset (:func:`parity`), so the
+    antiderivatives of Eq. 44-48 are evaluated for |i|, |j| only and mirrored
+    (:func:`unfold`): up to a quarter of the transcendental work when the ranges
+    straddle zero.  Equal to :func:`coefficient_table` up to round-off.
+    """
+    quad = coefficient_table(folded_range(*kx), folded_range(*ky), z, dx, dy, nu, loads)
+    return {ld: {c: unfold(q, kx, ky, parity(ld, c)) for c, q in comps.items()}
+            for ld, comps in quad.items()}

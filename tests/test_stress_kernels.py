@@ -323,3 +323,35 @@ def test_finite_everywhere_and_z0_edges_rejected():
         cell_stress_coefficients(0.5 * dx, 0.0, 0.0, dx, dy, NU)
     with pytest.raises(ValueError, match="z must be"):
         cell_stress_coefficients(0.0, 0.0, -1.0, dx, dy, NU)
+
+
+@pytest.mark.parametrize(("kx", "ky"), [((-5, 7), (-3, 4)), ((2, 6), (-6, -1)),
+                                        ((-4, 0), (0, 3)), ((-7, -7), (3, 3)),
+                                        ((-6, -2), (-2, 5))])
+@pytest.mark.parametrize("z", [0.0, 0.004, 0.05])
+def test_symmetric_table_equals_the_full_table(kx, ky, z):
+    """One quadrant mirrored by the parity of each coefficient (odd ones change sign)
+    equals the table evaluated over the whole range, for ranges on either side of zero,
+    straddling it, or a single offset; a wrong parity sign fails by O(1)."""
+    from halfspace.stress_kernels import coefficient_table, parity, symmetric_table
+
+    dx, dy, nu = 0.02, 0.03, 0.28
+    full = coefficient_table(kx, ky, z, dx, dy, nu)
+    sym = symmetric_table(kx, ky, z, dx, dy, nu)
+    scale = max(np.abs(arr).max() for comps in full.values() for arr in comps.values())
+    for load, comps in full.items():
+        for c, arr in comps.items():
+            assert sym[load][c].shape == arr.shape
+            assert np.abs(sym[load][c] - arr).max() < 1e-12 * scale, (load, c)
+    # the parities themselves: even/odd in xo and yo, checked on the closed form
+    B = cell_stress_coefficients(np.array([0.7, -0.7, 0.7]) * dx * 3,
+                                 np.array([0.4, 0.4, -0.4]) * dy * 3, 0.01, dx, dy, nu)
+    odd_seen = 0
+    for load in LOADS:
+        for c in STRESS_COMPONENTS:
+            px, py = parity(load, c)
+            v = B[load][c]
+            assert v[1] == pytest.approx(px * v[0], rel=1e-9, abs=1e-15), (load, c)
+            assert v[2] == pytest.approx(py * v[0], rel=1e-9, abs=1e-15), (load, c)
+            odd_seen += (px < 0) + (py < 0)
+    assert odd_seen == 16  # n: 2 + 2, x and y: 4 + 2 of the (component, axis) pairs
