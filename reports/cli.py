@@ -1,4 +1,4 @@
-"""The ``contact-vv`` command line: list, run, report, gate and sweep.
+"""The ``contact-vv`` command line: list, run, report, gate, sweep and threshold.
 
 Exit status: 0 success; 1 a solver failed (did not converge, crashed) or the gate found
 a failed metric, non-converged run or incomplete case; 2 a user error (bad case file,
@@ -119,7 +119,32 @@ def build_parser() -> argparse.ArgumentParser:
                        help="re-run serially, check the numbers are identical and report "
                        "both wall times (DIR/<case>__sweep_*/sweep_check.json)")
     common(sweep, solving=True)
+
+    _threshold_parser(sub, common)
     return parser
+
+
+def _threshold_parser(sub: Any, common: Any) -> None:
+    """The ``threshold`` sub-command (reports/threshold.py)."""
+    thr = sub.add_parser("threshold", help="bisect a case key for the value at which an "
+                         "event changes, per solver and grid (DIR/thresholds.csv)")
+    thr.add_argument("case", metavar="CASE")
+    thr.add_argument("--param", required=True, metavar="KEY", help="dotted case key bisected")
+    thr.add_argument("--event", required=True, metavar="EVENT",
+                     help="vm_max_on_surface or gross_to_partial_slip")
+    thr.add_argument("--range", nargs=2, type=float, metavar=("LO", "HI"),
+                     help="bracket (default: 0 1 for friction.mu*, 0 90 for friction.beta)")
+    thr.add_argument("--resolution", type=float, metavar="R",
+                     help="final bracket width (default: 0.01 for mu, 1 for beta)")
+    thr.add_argument("--grids", metavar="F1,F2",
+                     help="grid refinement factors: 1 the case grid, 2 finer by 2, 1/1.5 "
+                     "coarser by 1.5 (default: 1,1/1.5)")
+    thr.add_argument("--at", default="", metavar="VALUE",
+                     help="output step: sliding distance s [mm] (sliding wear), cycle "
+                     "(fretting), or s=V, cycle=N, step=N (default: the last)")
+    thr.add_argument("--surface-depth", type=float, default=0.0, metavar="MM",
+                     help="vm_max_on_surface: depth counted as the surface (default 0)")
+    common(thr, solving=True)
 
 
 # ------------------------------------------------------------------ commands
@@ -275,6 +300,39 @@ def _check_serial(plan, path: Path, wall: float) -> int:
     return 0 if same else 1
 
 
+def cmd_threshold(args: argparse.Namespace) -> int:
+    from . import threshold as th
+    from .events import EventOptions, event
+    from .plan import select_solvers
+
+    th.check_param(args.param)
+    event(args.event)
+    lo, hi, res = th.bracket(args.param, tuple(args.range) if args.range else None,
+                             args.resolution)
+    options = EventOptions(args.at.strip(), args.surface_depth)
+    overrides = _overrides(args.overrides)
+    if args.param in overrides:
+        raise UserError(f"--set {args.param}: the key is the one --param bisects")
+    chosen, skipped = select_solvers(_solver_list(args.solver))
+    for name, reason in skipped.items():
+        print(f"{PROG}: note: solver {name} skipped: {reason}", file=sys.stderr)
+    request = th.Request(case=args.case, param=args.param, event=args.event, lo=lo, hi=hi,
+                         resolution=res, grids=th.parse_grids(args.grids),
+                         solvers=tuple(chosen), quick=args.quick, overrides=overrides,
+                         options=options, limits=_limits(args))
+    th.existing(args.out)  # a damaged table is refused before any work
+    t0 = time.perf_counter()
+    rows = th.run(request, log=None if args.no_progress else th.stderr_log)
+    print(th.format_table(request, rows))
+    path = th.write_rows(args.out, rows)
+    print(f"threshold: {path} ({time.perf_counter() - t0:.1f} s)")
+    failed = [f"{r['solver']} {r['grid']}: {r['status']}" for r in rows
+              if r["status"].startswith("failed")]
+    if failed:
+        raise RunFailed(failed)
+    return 0
+
+
 def cmd_report(args: argparse.Namespace) -> int:
     from .html import write_report
 
@@ -297,7 +355,7 @@ def cmd_gate(args: argparse.Namespace) -> int:
 
 
 COMMANDS = {"list": cmd_list, "run": cmd_run, "report": cmd_report, "gate": cmd_gate,
-            "sweep": cmd_sweep}
+            "sweep": cmd_sweep, "threshold": cmd_threshold}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

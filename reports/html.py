@@ -303,6 +303,25 @@ def provenance_html(mf: dict[str, Any]) -> str:
             f"{walls}</div>")
 
 
+def thresholds_html(out: Path) -> str:
+    """The Thresholds table from ``DIR/thresholds.csv`` (``contact-vv threshold``), if any."""
+    from .readers import THRESHOLDS, DamagedResult, read_result, read_thresholds
+
+    if not (Path(out) / THRESHOLDS).exists():
+        return ""
+    try:
+        t = read_result(Path(out) / THRESHOLDS, read_thresholds)
+    except DamagedResult as exc:
+        return f'<h2 id="thresholds">Thresholds</h2><p class="warn bad">{_e(exc)}</p>'
+    cols = ["case", "point", "event", "param", "at", "solver", "grid", "cell_size",
+            "threshold", "uncertainty", "resolution", "evaluations", "grid_shift", "status"]
+    return ('<h2 id="thresholds">Thresholds</h2><div class="thresholds"><p>Parameter values '
+            "at which an event changes (<code>contact-vv threshold</code>): bisected per "
+            "solver and grid to ± uncertainty; grid_shift is the change from the case grid; "
+            "cell_size in mm; grid <i>exact</i>: the closed form's value.</p>"
+            + table_html(t[[c for c in cols if c in t.columns]], left=7) + "</div>")
+
+
 def render(results: Scan, out: Path) -> str:
     """The whole report page.  A case whose files turn out to be damaged while its
     section is drawn is moved from ``results.complete`` to ``results.damaged``."""
@@ -347,7 +366,8 @@ def render(results: Scan, out: Path) -> str:
             f"<title>contact-vv report</title><style>{CSS}</style></head><body>"
             f"<h1>contact-vv verification report</h1><p>Results in <code>{_e(out)}</code>, "
             f"report generated {_e(when)}.</p>{warn}{verdict}"
-            f"<nav><h2>Cases</h2><ul>{''.join(toc)}</ul></nav>{''.join(sections)}"
+            f"<nav><h2>Cases</h2><ul>{''.join(toc)}</ul></nav>{thresholds_html(out)}"
+            f"{''.join(sections)}"
             "</body></html>")
 
 
@@ -362,7 +382,7 @@ def write_report(out: Path) -> Path:
 
     out = Path(out)
     results = scan(out)
-    if results.empty:
+    if results.empty and not (out / "thresholds.csv").exists():
         raise UserError(f"no results in {out} (run `contact-vv run` first)")
     path = out / "index.html"
     atomic_write_text(path, render(results, out))

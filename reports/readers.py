@@ -276,3 +276,19 @@ def read_sweep_check(path: Path) -> dict[str, Any]:
     if not isinstance(check.get("identical"), bool):
         raise Malformed(f"identical is {check.get('identical')!r}, not true or false")
     return check
+
+
+THRESHOLDS = "thresholds.csv"
+#: the columns that name a threshold (``contact-vv threshold`` replaces rows that match)
+MERGE_KEYS = ["case", "point", "event", "param", "at", "quick", "solver", "grid"]
+_THRESHOLD_TEXT = ("case", "point", "event", "param", "at", "quick", "solver", "grid",
+                   "status")
+
+
+def read_thresholds(path: Path) -> pd.DataFrame:
+    """``DIR/thresholds.csv`` (written by ``contact-vv threshold``, reports/threshold.py)."""
+    return read_csv(path, required=[*MERGE_KEYS, "threshold", "uncertainty", "status"],
+                    text=_THRESHOLD_TEXT,
+                    numeric=("refine", "cell_size", "threshold", "uncertainty", "resolution",
+                             "lo", "hi", "range_lo", "range_hi", "evaluations", "grid_shift",
+                             "wall_s"))
