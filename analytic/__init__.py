@@ -15,6 +15,28 @@ against it).  Modules:
   solver protocol of :mod:`reports.solvers`.
 """
 
-from .solver import solve, supports
+from __future__ import annotations
+
+from collections.abc import Callable
+
+from cases.model import Case
+from cases.result import RunResult, StepResult
+
+
+def solve(case: Case, *, progress: bool = False,
+          on_output: Callable[[StepResult], None] | None = None) -> RunResult:
+    """The closed forms of ``case`` (:func:`analytic.solver.solve`); imported on first use,
+    so that a module of this package loads without the others."""
+    from .solver import solve as _solve
+
+    return _solve(case, progress=progress, on_output=on_output)
+
+
+def supports(case: Case) -> str | None:
+    """None, or why the case has no closed form (:func:`analytic.solver.supports`)."""
+    from .solver import supports as _supports
+
+    return _supports(case)
+
 
 __all__ = ["solve", "supports"]
