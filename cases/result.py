@@ -11,6 +11,9 @@ slip increment of the step [mm]; ``wear_a, wear_b`` accumulated wear depth [mm];
 
 Plane fields, arrays of shape (ns, nz) for coordinates (s, z), s = x on 'xz' and y on
 'yz', z the depth into the reported body: ``sxx, syy, szz, sxy, sxz, syz, vm`` [MPa].
+
+Solvers that watch an evolution for regime events (gross -> partial slip, the load lost,
+the contact worn through) list them in :attr:`RunResult.events` (:class:`RunEvent`).
 """
 
 from __future__ import annotations
@@ -33,6 +36,8 @@ SUMMARY_COLUMNS = [
 ]
 STRESS_COMPONENTS = ("sxx", "syy", "szz", "sxy", "sxz", "syz")
 OPEN, STICK, SLIP = 0, 1, 2  # the surface field ``state`` of every solver
+#: the columns of an event (``events.csv`` adds ``case, solver, param`` before them)
+EVENT_COLUMNS = ["event", "cycle", "cycle_resolution", "detail"]
 
 
 def von_mises(sxx, syy, szz, sxy, sxz, syz):
@@ -91,14 +96,32 @@ class StepResult:
         return int(value)
 
 
+@dataclass(frozen=True)
+class RunEvent:
+    """A regime event of an evolution run (e.g. ``gross_to_partial_slip``): it happened
+    after cycle ``cycle - cycle_resolution`` and at or before cycle ``cycle`` (real
+    cycles: a solver with a cycle jump J sees it to within J); ``detail`` says what
+    was seen."""
+
+    event: str
+    cycle: float
+    cycle_resolution: float
+    detail: str = ""
+
+
 @dataclass
 class RunResult:
+    """What a solver returns for one sweep point: the output steps, metadata, per-cycle
+    or per-step tables (numeric columns), and ``events``: the regime events a solver
+    that watches for them saw (None: it does not watch; [] it watched, none happened)."""
+
     case: str
     solver: str
     param: str
     steps: list[StepResult]
     meta: dict = field(default_factory=dict)
     tables: dict[str, dict[str, np.ndarray]] = field(default_factory=dict)
+    events: list[RunEvent] | None = None
 
     def summary_rows(self) -> list[dict]:
         """One ``summary.csv`` row per output step: the contract columns
@@ -112,6 +135,12 @@ class RunResult:
                        step=step.number(k))
             rows.append(row)
         return rows
+
+    def event_rows(self) -> list[dict]:
+        """One ``events.csv`` row per event: ``case, solver, param``, then
+        :data:`EVENT_COLUMNS`, in the order the solver saw them."""
+        return [{"case": self.case, "solver": self.solver, "param": self.param,
+                 **{c: getattr(e, c) for c in EVENT_COLUMNS}} for e in self.events or ()]
 
 
 @dataclass(frozen=True)

@@ -14,21 +14,28 @@ fretting the slip is unknown: it is taken from a predictor solve of the step (se
 :func:`_fretting_step`).
 
 Fretting uses a cycle jump factor J: each simulated cycle stands for J cycles, its wear
-multiplied by J (results must be shown converged in J).
+multiplied by J (results must be shown converged in J).  Every simulated cycle is
+watched for regime events (:class:`RegimeWatch`, returned in ``RunResult.events``):
+gross -> partial slip and back (stick cells at the tangential extremes ±A), and under
+a held approach the load lost (P < :data:`LOAD_LOST_FRACTION` P0) and the contact worn
+through (no contact cell), each with the real cycle at which it was seen, to within J.
 """
 
 from __future__ import annotations
 
+import math
+import sys
 import time
 from collections.abc import Callable
+from dataclasses import dataclass, field
 
 import numpy as np
 from tqdm.auto import tqdm
 
 from cases.model import Case
-from cases.result import RunResult, StepResult
+from cases.result import RunEvent, RunResult, StepResult
 
-from .contact import STICK, ContactNotConverged, ContactState
+from .contact import STICK, ContactNotConverged, ContactSolver, ContactState, StepSolution
 from .friction import wear_norm
 from .output import SOLVER_NAME, step_result
 from .problem import contact_solver, profile, slide_direction, stress_evaluator
@@ -136,7 +143,8 @@ def fretting_path(amplitude: float, steps_per_cycle: int) -> np.ndarray:
 def fretting(case: Case, progress: bool = False,
              on_output: OutputCallback | None = None) -> RunResult:
     """Fretting (case 6): normal approach (or load) held, tangential displacement along x
-    0 -> +A, then cycles +A -> -A -> +A; both bodies wear; cycle jump factor J."""
+    0 -> +A, then cycles +A -> -A -> +A; both bodies wear; cycle jump factor J.  The
+    regime of every simulated cycle is watched (:class:`RegimeWatch`)."""
     t0 = time.perf_counter()
     fr = case.fretting
     J = fr.jump
@@ -145,23 +153,21 @@ def fretting(case: Case, progress: bool = False,
     out_sim.setdefault(n_sim, fr.cycles)
     solver, stresses = contact_solver(case), stress_evaluator(case)
     h0 = profile(case)
-    shape = h0.shape
-    w_a, w_b = np.zeros(shape), np.zeros(shape)
+    w_a, w_b = np.zeros(h0.shape), np.zeros(h0.shape)
     normal = {"P": case.load.P} if case.load.load_controlled else {
         "approach": case.load.approach}
     d = slide_direction(case.load.slide_angle)
-    # initial loading: normal, then 0 -> +A in a quarter cycle (no wear counted)
-    state = solver.solve(h0, **normal).state
-    quarter = fr.steps_per_cycle // 4 or 1
-    for u in fr.amplitude * np.arange(1, quarter + 1) / quarter:
-        state = solver.solve(h0, **normal, shift=u * d, prev=state).state
+    first = _initial_loading(case, solver, h0, normal, d)
+    watch = RegimeWatch(case, first)
+    state = first.state
     path = fretting_path(fr.amplitude, fr.steps_per_cycle)
     loops, cycles = [], []
     steps: list[StepResult] = []
     last_cycle: list[ContactState | None] = [None] * len(path)  # warm starts
     for n in tqdm(range(1, n_sim + 1), disable=not progress,
                   desc=f"{case.name} {case.param}", unit="cycle"):
-        energy, min_stick, Q_prev, u_prev = 0.0, np.inf, state_Q(state, case), fr.amplitude
+        seen = CycleObservation(case.grid.dx * case.grid.dy)
+        energy, Q_prev, u_prev = 0.0, state_Q(state, case), fr.amplitude
         for k, u in enumerate(path):
             sol, dw_a, dw_b = _fretting_step(case, solver, h0 + w_a + w_b, normal, u * d,
                                              state, J, last_cycle[k])
@@ -171,25 +177,178 @@ def fretting(case: Case, progress: bool = False,
             Q = np.array([sol.Qx, sol.Qy])
             energy += 0.5 * float((Q + Q_prev) @ d) * (u - u_prev)
             Q_prev, u_prev = Q, u
-            min_stick = min(min_stick, float(np.count_nonzero(sol.status == STICK)))
+            seen.see(sol, extreme=abs(abs(u) - fr.amplitude) <= 1e-12 * fr.amplitude)
             loops.append((n * J, u, sol.Qx, sol.Qy))
-        cycles.append((n * J, abs(energy), min_stick * case.grid.dx * case.grid.dy,
-                       1.0 if min_stick == 0 else 0.0, (w_a + w_b).max()))
+        watch.observe(n, seen)
+        cycles.append(seen.row(n * J, abs(energy), (w_a + w_b).max()))
         if n in out_sim:
             res = step_result(case, sol, stresses, step=n, wear_a=w_a, wear_b=w_b,
                               wall_s=time.perf_counter() - t0, cycle=out_sim[n])
             steps.append(res)
             if on_output is not None:
                 on_output(res)
+    return RunResult(case=case.name, solver=SOLVER_NAME, param=case.param, steps=steps,
+                     meta={"method": case.solver.method, "jump": J},
+                     tables=_fretting_tables(loops, cycles), events=watch.events)
+
+
+def _initial_loading(case: Case, solver: ContactSolver, h0: np.ndarray, normal: dict,
+                     d: np.ndarray) -> StepSolution:
+    """The normal load (or approach), then 0 -> +A in a quarter cycle (no wear counted);
+    the step solution at +A."""
+    fr = case.fretting
+    sol = solver.solve(h0, **normal)
+    quarter = fr.steps_per_cycle // 4 or 1
+    for u in fr.amplitude * np.arange(1, quarter + 1) / quarter:
+        sol = solver.solve(h0, **normal, shift=u * d, prev=sol.state)
+    return sol
+
+
+_CYCLE_COLUMNS = ("cycle", "energy", "min_stick_area", "gross_slip", "w_max",
+                  "stick_area_neg", "stick_area_pos", "P_min", "contact_area_min")
+
+
+def _fretting_tables(loops: list[tuple], cycles: list[tuple]) -> dict[str, dict]:
+    """The ``loops`` (cycle, displacement, Qx, Qy per step) and ``cycles`` tables: per
+    simulated cycle the real cycle count at its end, the dissipated energy [N mm], the
+    least stick area over its steps, ``gross_slip`` (1 gross, 0 partial, NaN no contact:
+    :func:`regime`), w_max, the stick areas at -A and +A [mm²], the least P [N] and the
+    least contact area [mm²] over its steps."""
     loops_a, cyc_a = np.array(loops), np.array(cycles)
-    tables = {
+    return {
         "loops": {"cycle": loops_a[:, 0], "displacement": loops_a[:, 1],
                   "Qx": loops_a[:, 2], "Qy": loops_a[:, 3]},
-        "cycles": {"cycle": cyc_a[:, 0], "energy": cyc_a[:, 1], "min_stick_area": cyc_a[:, 2],
-                   "gross_slip": cyc_a[:, 3], "w_max": cyc_a[:, 4]},
+        "cycles": {c: cyc_a[:, i] for i, c in enumerate(_CYCLE_COLUMNS)},
     }
-    return RunResult(case=case.name, solver=SOLVER_NAME, param=case.param, steps=steps,
-                     meta={"method": case.solver.method, "jump": J}, tables=tables)
+
+
+# ---------------------------------------------------------------------- regime events
+
+#: "load lost": under a held approach the normal load P falls below this fraction of P0,
+#: the load after the initial loading (1 %: the contact then carries too little load for
+#: its tractions, stresses and wear to matter; P itself only decays geometrically under
+#: the implicit wear, it reaches exactly 0 only when the contact is worn through)
+LOAD_LOST_FRACTION = 0.01
+GROSS, PARTIAL = "gross", "partial"
+
+
+def regime(stick_cells: int, contact_cells: int) -> str | None:
+    """The slip regime at a tangential extreme (±A) of a fretting cycle: ``GROSS`` when
+    no contact cell sticks (every cell in contact is on the friction limit, Eq. 13: the
+    whole contact slides), ``PARTIAL`` when some do, None without a contact cell."""
+    if contact_cells == 0:
+        return None
+    return PARTIAL if stick_cells > 0 else GROSS
+
+
+@dataclass
+class CycleObservation:
+    """What one simulated cycle showed: stick and contact cells at its tangential
+    extremes (-A mid-cycle, +A at its end, in that order), the least load P [N], stick
+    and contact cell counts over its steps; ``dA`` the cell area [mm²]."""
+
+    dA: float
+    stick: list[int] = field(default_factory=list)
+    contact: list[int] = field(default_factory=list)
+    P_min: float = math.inf
+    min_stick: int = sys.maxsize
+    contact_min: int = sys.maxsize
+
+    def see(self, sol: StepSolution, extreme: bool) -> None:
+        """Take in one step of the cycle (``extreme``: the imposed shift is ±A)."""
+        stick = int(np.count_nonzero(sol.status == STICK))
+        contact = int(np.count_nonzero(sol.state.p_n > 0))
+        self.P_min = min(self.P_min, sol.P)
+        self.min_stick = min(self.min_stick, stick)
+        self.contact_min = min(self.contact_min, contact)
+        if extreme:
+            self.stick.append(stick)
+            self.contact.append(contact)
+
+    def regime(self) -> str | None:
+        """The cycle's regime: gross slip if at either extreme no cell sticks (the whole
+        contact slid in the cycle), None if an extreme has no contact (:func:`regime`)."""
+        at = [regime(s, c) for s, c in zip(self.stick, self.contact, strict=True)]
+        if not at or None in at:
+            return None
+        return GROSS if GROSS in at else PARTIAL
+
+    def extremes(self) -> tuple[float, float]:
+        """Stick areas [mm²] at -A and +A."""
+        return self.stick[0] * self.dA, self.stick[-1] * self.dA
+
+    def row(self, cycle: float, energy: float, w_max: float) -> tuple[float, ...]:
+        """The cycle's row of the ``cycles`` table (:data:`_CYCLE_COLUMNS`); its
+        ``gross_slip`` is 1 in gross slip, 0 in partial slip, NaN without contact."""
+        now = self.regime()
+        return (cycle, energy, self.min_stick * self.dA,
+                math.nan if now is None else float(now == GROSS), w_max, *self.extremes(),
+                self.P_min, self.contact_min * self.dA)
+
+
+class RegimeWatch:
+    """The regime events of a fretting run (docs/cases.md, case 6), one simulated cycle
+    at a time: ``gross_to_partial_slip`` / ``partial_to_gross_slip`` when the regime at
+    the tangential extremes changes (:meth:`CycleObservation.regime`; the first cycle is
+    compared with the initial loading 0 -> +A), and under a held approach ``load_lost``
+    (P below :data:`LOAD_LOST_FRACTION` P0) and ``contact_worn_through`` (no contact
+    cell), each once.
+
+    Simulated cycle n stands for the real cycles (n - 1) J + 1 .. n J (J the cycle jump,
+    the last one cut at ``fretting.cycles``): an event seen in it is recorded at cycle
+    n J with ``cycle_resolution`` J, i.e. it happened after cycle (n - 1) J and at or
+    before n J; the cycle is known to within J."""
+
+    def __init__(self, case: Case, first: StepSolution):
+        fr, g = case.fretting, case.grid
+        self.jump, self.total, self.dA = fr.jump, fr.cycles, g.dx * g.dy
+        self.held_approach = not case.load.load_controlled
+        self.P0 = first.P
+        self.regime = regime(int(np.count_nonzero(first.status == STICK)),
+                             int(np.count_nonzero(first.state.p_n > 0)))
+        self.stick = float(np.count_nonzero(first.status == STICK)) * self.dA
+        self.last = (0.0, first.P)  # (cycle, least P) of the last cycle with contact
+        self.events: list[RunEvent] = []
+
+    def cycle(self, n: int) -> float:
+        """The real cycle count at the end of simulated cycle n."""
+        return float(min(n * self.jump, self.total))
+
+    def observe(self, n: int, seen: CycleObservation) -> None:
+        """Record the events of simulated cycle n."""
+        at, before = self.cycle(n), self.cycle(n - 1)
+        self._regime_change(seen, at, before)
+        if self.held_approach:
+            self._load(seen, at, before)
+        if seen.contact_min > 0:
+            self.last = (at, seen.P_min)
+
+    def _add(self, event: str, at: float, before: float, detail: str) -> None:
+        self.events.append(RunEvent(event, at, at - before, detail))
+
+    def _regime_change(self, seen: CycleObservation, at: float, before: float) -> None:
+        now = seen.regime()
+        if now is None:
+            return  # no contact at an extreme: no regime (contact_worn_through says so)
+        stick = min(seen.extremes())
+        if self.regime is not None and now != self.regime:
+            self._add(f"{self.regime}_to_{now}_slip", at, before,
+                      f"least stick area at the extremes ±A {self.stick:.4g} mm² at "
+                      f"cycle {before:g} -> {stick:.4g} mm² at cycle {at:g}")
+        self.regime, self.stick = now, stick
+
+    def _load(self, seen: CycleObservation, at: float, before: float) -> None:
+        done = {e.event for e in self.events}
+        limit = LOAD_LOST_FRACTION * self.P0
+        if "load_lost" not in done and seen.P_min < limit:
+            self._add("load_lost", at, before,
+                      f"P = {seen.P_min:.4g} N < {LOAD_LOST_FRACTION:.0%} of P0 = "
+                      f"{self.P0:.4g} N (least P of the cycle; P0 after the initial "
+                      "loading)")
+        if "contact_worn_through" not in done and seen.contact_min == 0:
+            self._add("contact_worn_through", at, before,
+                      f"no contact cell, P = 0 (least P {self.last[1]:.4g} N at cycle "
+                      f"{self.last[0]:g}, the last with contact)")
 
 
 def state_Q(state: ContactState, case: Case) -> np.ndarray:

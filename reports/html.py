@@ -19,6 +19,7 @@ from cases.result import atomic_write_text
 from . import gridstudy, plots
 from .gate import metrics_table, problems
 from .results import CaseResults, Scan, not_converged, scan
+from .run_events import EVENTS_NOTE, events_view
 from .studies import convergence_frame, scales, study_frame
 
 CSS = """
@@ -85,13 +86,17 @@ def _worst(metrics: pd.DataFrame) -> pd.DataFrame:
 
 
 def case_section(case: CaseResults) -> str:
-    """The HTML section of one case: header, summary, fields per sweep point, sweep,
-    metrics, grid convergence, Dask check and provenance."""
+    """The HTML section of one case: header, summary, events (if any), fields per sweep
+    point, sweep, metrics, grid convergence, Dask check and provenance."""
     mf, name = case.manifest, case.name
     point_scales = scales(case)
     parts = [*_header(case)]
     if not case.summary.empty:
         parts += _summary(case, point_scales)
+    events = events_view(case.events)
+    if not events.empty:
+        parts.append(f'<h3 id="events-{_e(name)}">Events</h3><div class="events"><p>'
+                     f"{EVENTS_NOTE}</p>{table_html(events, left=4)}</div>")
     for param in dict.fromkeys(mf.get("params", [""])):
         parts += _fields(case, param, point_scales)
     sweep = plots.sweep_figure(case.summary, point_scales, f"Sweep: {name}") \

@@ -5,6 +5,8 @@
     DIR/<case>/manifest.json                      written last: the run is complete
     DIR/<case>/summary.csv                        one row per (solver, param, step)
     DIR/<case>/metrics.csv                        one row per compared quantity
+    DIR/<case>/events.csv                         fretting: one row per regime event
+                                                  (reports.run_events)
     DIR/<case>/convergence.csv                    run --convergence: one row per (solver,
                                                   param, step, gated quantity) of the
                                                   three-grid studies (reports.gridstudy)
@@ -32,13 +34,14 @@ MANIFEST = "manifest.json"
 SUMMARY = "summary.csv"
 METRICS = "metrics.csv"
 CONVERGENCE = "convergence.csv"
+EVENTS = "events.csv"
 FIELDS = "fields"
 PARTIAL_SUFFIX = ".partial"
 FAILED = "failed.json"
 
 #: names a case directory may hold; a directory with none of them is not a result
-OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, FIELDS, "sweep.png",
-                       "sweep_check.json"})
+OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, EVENTS, FIELDS,
+                       "sweep.png", "sweep_check.json"})
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9._=+-]")
 

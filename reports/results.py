@@ -35,6 +35,7 @@ from .readers import (
     read_sweep_check,
     read_table,
 )
+from .run_events import COLUMNS, read_events
 
 # --------------------------------------------------------------------- results
 
@@ -81,6 +82,15 @@ class CaseResults:
             return pd.DataFrame(columns=COLUMNS)
         return read_result(path, read_convergence)
 
+    @property
+    def events(self) -> pd.DataFrame:
+        """The regime events of the runs (``events.csv``, :mod:`reports.run_events`; an
+        empty table when the case has none)."""
+        path = self.path / layout.EVENTS
+        if not path.exists():
+            return pd.DataFrame(columns=COLUMNS)
+        return read_result(path, read_events)
+
     def point(self, param: str) -> dict[str, Any]:
         """The case parameters (as recorded) of one sweep point."""
         for p in self.manifest.get("points", []):
@@ -89,8 +99,8 @@ class CaseResults:
         return {}
 
     def check_files(self) -> None:
-        """Read every output step, solver table, the sweep check and the grid studies once
-        (:class:`DamagedResult` on the first that cannot be read)."""
+        """Read every output step, solver table, the sweep check, the grid studies and the
+        events once (:class:`DamagedResult` on the first that cannot be read)."""
         for solver in self.manifest.get("solvers", []):
             for param in dict.fromkeys(self.manifest.get("params", [""])):
                 for f in self._step_files(solver, param).values():
@@ -99,6 +109,7 @@ class CaseResults:
         if (self.path / SWEEP_CHECK).exists():
             read_result(self.path / SWEEP_CHECK, read_sweep_check)
         _ = self.convergence
+        _ = self.events
 
 
 @dataclass

@@ -41,6 +41,7 @@ from . import gridstudy, layout, manifest
 from .compare import METRICS_COLUMNS, compare_point
 from .errors import UserError
 from .plan import CasePlan
+from .run_events import events_frame
 from .staging import case_lock, claim_staging, remove_dir
 from .units import UnitOutcome, failure_line, serial_executor
 from .write import jsonable, summary_frame, write_csv, write_unit
@@ -65,9 +66,11 @@ Executor = Callable[[CasePlan, list[tuple[int, str]], bool], Iterable[UnitOutcom
 @dataclass
 class _Collected:
     """What the units of a case produced so far: summary rows per (point, solver),
-    metrics per complete point, manifest records, failures."""
+    event rows per (point, solver) of the solvers that watch for events, metrics per
+    complete point, manifest records, failures."""
 
     rows: dict[tuple[int, int], list[dict[str, Any]]] = field(default_factory=dict)
+    events: dict[tuple[int, int], list[dict[str, Any]]] = field(default_factory=dict)
     metrics: dict[int, pd.DataFrame] = field(default_factory=dict)
     records: list[dict[str, Any]] = field(default_factory=list)
     failures: list[UnitOutcome] = field(default_factory=list)
@@ -108,6 +111,9 @@ def _collect(plan: CasePlan, staging: Path, executor: Executor, progress: bool |
             try:
                 got.rows[(outcome.index, order[outcome.solver])] = write_unit(
                     staging, outcome, case=plan.points[outcome.index])
+                if outcome.result.events is not None:
+                    got.events[(outcome.index, order[outcome.solver])] = \
+                        outcome.result.event_rows()
             except Exception as exc:  # a result that cannot be written is a failed run
                 got.failures.append(_failed(outcome, "writing its results", exc))
                 break
@@ -200,6 +206,9 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
         write_csv(staging / layout.CONVERGENCE, study.table)
         summary = gridstudy.flag_summary(summary, study.table)
     write_csv(staging / layout.SUMMARY, summary)
+    if got.events:  # some solver watched for regime events (reports.run_events)
+        write_csv(staging / layout.EVENTS,
+                  events_frame([r for key in sorted(got.events) for r in got.events[key]]))
     parts = [got.metrics[i] for i in sorted(got.metrics) if not got.metrics[i].empty]
     metrics = pd.concat(parts, ignore_index=True) if parts else \
         pd.DataFrame(columns=METRICS_COLUMNS)
