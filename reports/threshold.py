@@ -68,7 +68,7 @@ class Request:
     hi: float
     resolution: float
     grids: tuple[float, ...] = DEFAULT_GRIDS
-    solvers: tuple[str, ...] = ("ic", "fem", "analytic")
+    solvers: tuple[str, ...] = field(default_factory=lambda: tuple(solvers.names()))
     quick: bool = False
     overrides: dict[str, Any] = field(default_factory=dict)
     options: EventOptions = EventOptions()
@@ -289,7 +289,7 @@ def run(request: Request, log: Callable[[str], None] | None = None) -> list[dict
         raise _no_change(request, stuck)
     rows = []
     for u, e in ends:
-        if u.solver == "analytic" and u.factor == request.grids[0]:
+        if solvers.record(u.solver).closed_form and u.factor == request.grids[0]:
             exact = _exact_row(u)
             if exact is not None:
                 rows.append(exact)
