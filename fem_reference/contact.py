@@ -213,9 +213,9 @@ def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray) -> np.ndarr
     """Solve ``(K + B) x = rhs`` with ``K = C⁻¹`` (dense) and a sparse contact tangent B.
 
     B only couples the DOFs A (its nonzero rows and columns) touched by points in
-    contact, so with the push-through
-    (Woodbury) identity ``(K + B)⁻¹ = C − C_{:A} (I + B_AA C_AA)⁻¹ B_AA C_{A:}`` the dense
-    factorisation shrinks from all condensed DOFs to the DOFs in contact.
+    contact, so with the push-through (Woodbury) identity
+    ``(K + B)⁻¹ = C − C_{:A} (I + B_AA C_AA)⁻¹ B_AA C_{A:}`` the dense factorisation
+    shrinks from all condensed DOFs to the DOFs in contact.
     """
     y = C @ rhs
     B = sp.csr_matrix(B)
@@ -223,7 +223,7 @@ def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray) -> np.ndarr
     # the DOFs of nonzero rows and columns: a point's tangent need not be symmetric
     # (slip couples t to u_n, not p_n to u_t), and a row without its column would be
     # lost by B_AA
-    A = np.unique(np.concatenate([B.indices, np.repeat(np.arange(B.shape[0]), np.diff(B.indptr))]))
+    A = np.unique(np.concatenate(B.nonzero()))
     if A.size == 0:
         return y
     BAA = B[A][:, A]
