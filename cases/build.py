@@ -150,6 +150,25 @@ def _tolerances(d: dict) -> dict[str, float]:
     return tolerances
 
 
+def _not_converged(d: dict) -> dict[str, str]:
+    """``[not_converged]``: quantity -> the reason (a non-empty string); the quantity names
+    are checked against the comparisons' by the reports (:mod:`reports.tolerances`)."""
+    for key, value in d.items():
+        if not isinstance(value, str) or not value.strip():
+            raise CaseError(f"not_converged.{key} = {value!r}: must be a non-empty string "
+                            "saying why (with the measured values)")
+    return dict(d)
+
+
+def _stress(d: dict) -> StressOutput:
+    stress = _checked("stress", StressOutput, d, choices={"body": ("a", "b")},
+                      positive=("depth",), minimum={"nz": 2})
+    if stress.z_below is not None and not 0 < stress.z_below <= stress.depth:
+        raise CaseError(f"stress.z_below = {stress.z_below!r}: must lie in (0, stress.depth "
+                        f"= {stress.depth:g}] mm")
+    return stress
+
+
 def build(data: dict, *, name: str, source: str, param: str) -> Case:
     kind = data.get("kind", "static")
     _one_of(kind, KINDS, "kind")
@@ -178,9 +197,7 @@ def build(data: dict, *, name: str, source: str, param: str) -> Case:
         grid=_grid(data["grid"]),
         friction=friction,
         load=load,
-        stress=_checked("stress", StressOutput, data.get("stress", {}),
-                        choices={"body": ("a", "b")}, positive=("depth",),
-                        minimum={"nz": 2}),
+        stress=_stress(data.get("stress", {})),
         solver=_checked("solver", Solver, data.get("solver", {}),
                         choices={"method": ("cg", "uzawa")}, positive=("tol",),
                         minimum={"max_iter": 1}),
@@ -190,6 +207,7 @@ def build(data: dict, *, name: str, source: str, param: str) -> Case:
         fem=_checked("fem", FemSettings, data.get("fem", {}), choices={"order": (1, 2)},
                      positive=("block", "depth", "h", "penalty")),
         tolerances=_tolerances(data.get("tolerances", {})),
+        not_converged=_not_converged(data.get("not_converged", {})),
         description=data.get("description", ""),
         param=param,
         source=source,

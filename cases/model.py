@@ -154,6 +154,9 @@ class StressOutput:
     nz: int = 31  # layers from z = 0 to depth (inclusive)
     x0: float = 0.0  # planes pass through (x0, y0)
     y0: float = 0.0
+    #: the depth [mm] from which ``vm_max_below`` (the σ_VM maximum over the planes at
+    #: z >= z_below) is taken; None: not reported
+    z_below: float | None = None
 
     @property
     def z(self):
@@ -198,6 +201,8 @@ class Case:
     fretting: Fretting | None = None
     fem: FemSettings = field(default_factory=FemSettings)
     tolerances: dict[str, float] = field(default_factory=dict)
+    #: quantity -> why it is not a converged number (compared, shown, not gated)
+    not_converged: dict[str, str] = field(default_factory=dict)
     description: str = ""
     param: str = ""  # sweep label such as 'mu=0.25'; '' when not a sweep point
     source: str = ""  # path of the TOML file

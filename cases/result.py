@@ -80,6 +80,23 @@ def vm_max_location(planes: Mapping[str, Plane], x0: float, y0: float
     return best
 
 
+def vm_max_below(planes: Mapping[str, Plane], z_below: float) -> float:
+    """The largest σ_VM over the planes' samples at depth z >= ``z_below`` (a maximum
+    that stays a number where the surface maximum is singular, e.g. at the step-like
+    edge of a worn frictional contact, docs/formulation.md §2.6); NaN when no plane has a
+    finite σ_VM field there."""
+    best = math.nan
+    for plane in planes.values():
+        vm = plane.fields.get("vm")
+        if vm is None or vm.size == 0 or not np.isfinite(vm).all():
+            continue
+        deep = np.asarray(plane.z) >= z_below * (1.0 - 1e-12)
+        if deep.any():
+            value = float(np.max(vm[:, deep]))
+            best = value if math.isnan(best) else max(best, value)
+    return best
+
+
 @dataclass
 class StepResult:
     scalars: dict[str, float]

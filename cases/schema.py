@@ -47,10 +47,12 @@ SCHEMA: dict[str, Any] = {
         "jump": float,
         "output_cycles": [int],
     },
-    "stress": {"body": str, "depth": float, "nz": int, "x0": float, "y0": float},
+    "stress": {"body": str, "depth": float, "nz": int, "x0": float, "y0": float,
+               "z_below": float},
     "solver": {"method": str, "tol": float, "max_iter": int},
     "fem": {"block": float, "depth": float, "h": float, "order": int, "penalty": float},
     "tolerances": dict,
+    "not_converged": dict,
     "sweep": {"key": str, "values": [SCALAR], "label": str},
     "quick": dict,
 }

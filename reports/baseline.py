@@ -22,7 +22,7 @@ from .results import Scan
 
 INDEX = ["case", "solver", "param", "step"]
 KEYS = ["P", "p_max", "a_x", "a_y", "contact_area", "stick_area", "w_max", "wear_volume",
-        "vm_max", "vm_max_x", "vm_max_z"]
+        "vm_max", "vm_max_x", "vm_max_z", "vm_max_below"]
 DEFAULT_DRIFT = 1e-6
 
 

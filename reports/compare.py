@@ -39,7 +39,7 @@ from . import tolerances as tol
 from .cycles import compare_tables, friction_scale
 
 METRICS_COLUMNS = ["quantity", "pair", "metric", "value", "tolerance", "passed"]
-EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key"]
+EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key", "status", "note"]
 _TINY = 1e-12
 
 
@@ -260,7 +260,8 @@ def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float
     location of the σ_VM maximum (in cells and in a0)."""
     h = max(hx, hy)
     rows: list[tuple[str, str, float]] = []
-    scale_of = {"p_max": p0, "vm_max": p0, "w_max": a0, "wear_volume": a0**3}
+    scale_of = {"p_max": p0, "vm_max": p0, "vm_max_below": p0, "w_max": a0,
+                "wear_volume": a0**3}
     for q in tol.REL_SCALARS:
         a, b = _scalar(sa, q), _scalar(sb, q)
         if q == "vm_max":
@@ -316,7 +317,9 @@ def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
                                        cycle, mu_P)
             for quantity, metric, value in rows:
                 limit, key = tol.tolerance(case, pair, quantity, metric)
+                status, note = tol.status(case, quantity)
                 records.append({
+                    "status": status, "note": note,
                     "quantity": quantity, "pair": pair, "metric": metric, "value": value,
                     "tolerance": limit, "case": case.name, "param": case.param, "step": n,
                     "s": _scalar(sb, "s"), "cycle": _scalar(sb, "cycle"),

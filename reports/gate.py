@@ -2,7 +2,9 @@
 recomputed from value and tolerance; a recorded ``passed`` that disagrees is a problem
 too), non-converged run, incomplete or damaged case, naming each.  Quantities whose grid
 study (``run --convergence``, :mod:`reports.gridstudy`) is not converged are printed as
-``NOT CONVERGED (grid) …`` notes with their three values; they do not fail the gate."""
+``NOT CONVERGED (grid) …`` notes with their three values; metric rows whose ``status`` is
+"not converged" (declared in the case file or from that study, :mod:`reports.tolerances`)
+are printed as ``NOT GATED …`` notes with their value and reason: neither fails the gate."""
 
 from __future__ import annotations
 
@@ -15,10 +17,11 @@ import pandas as pd
 from .errors import RunFailed, UserError
 from .gridstudy import note_lines
 from .layout import METRICS
+from .readers import gated
 from .results import CaseResults, Scan, not_converged, scan
 
 _SHOW = ["case", "param", "step", "pair", "quantity", "metric", "value", "tolerance",
-         "passed", "tolerance_key"]
+         "passed", "status", "tolerance_key"]
 
 
 def metrics_table(results: Scan) -> pd.DataFrame:
@@ -45,10 +48,11 @@ def metric_problems(case: CaseResults) -> list[str]:
     tolerance, :func:`reports.readers.passes`) and per metric whose recorded ``passed``
     disagrees with that."""
     lines = []
-    for r in case.metrics.itertuples(index=False):
+    on = gated(case.metrics).to_numpy()
+    for k, r in enumerate(case.metrics.itertuples(index=False)):
         what = f"{_where(case.name, r.param, r.step)} {r.pair} {r.quantity} {r.metric}"
         value, tol = float(r.value), float(r.tolerance)
-        if not r.passed:
+        if on[k] and not r.passed:
             key = getattr(r, "tolerance_key", "")
             if not math.isfinite(value):
                 why = f"= {value} (not a finite number; tolerance {_num(tol)})"
@@ -62,6 +66,25 @@ def metric_problems(case: CaseResults) -> list[str]:
             lines.append(f"INCONSISTENT {what}: {case.path / METRICS} records passed = "
                          f"{bool(r.passed_recorded)}, but value {_num(value)} against "
                          f"tolerance {_num(tol)} {'passes' if r.passed else 'fails'}")
+    return lines
+
+
+def ungated_lines(case: CaseResults) -> list[str]:
+    """One ``NOT GATED …`` note per quantity of a case that is not converged (the metric
+    rows :func:`reports.readers.gated` leaves out), with its largest value and the
+    reason."""
+    m = case.metrics
+    if m.empty:
+        return []
+    off = m[~gated(m)]
+    lines = []
+    for (pair, quantity, metric), g in off.groupby(["pair", "quantity", "metric"],
+                                                  sort=False):
+        worst = g.loc[g["value"].astype(float).idxmax()]
+        lines.append(f"NOT GATED {case.name} {pair} {quantity} {metric} ({len(g)} row(s), "
+                     f"largest {_num(float(worst['value']))} at "
+                     f"{_where('', worst['param'], worst['step']).strip()}): not converged; "
+                     f"{worst['note']}")
     return lines
 
 
@@ -133,12 +156,15 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
         if stale_case_file(case.manifest):
             print(f"note: {case.name}: the case file {case.manifest.get('case_file')} changed "
                   "since the run (re-run to check the current version)", file=stream)
-        for line in note_lines(case.name, case.convergence):  # information, not failures
-            print(line, file=stream)
-    n_ok = int(table["passed"].astype(str).str.lower().isin(["true", "1"]).sum()) \
+        for line in note_lines(case.name, case.convergence) + ungated_lines(case):
+            print(line, file=stream)  # information, not failures
+    on = gated(table) if not table.empty else table.get("passed", pd.Series(dtype=bool))
+    n_ok = int((table["passed"].astype(str).str.lower().isin(["true", "1"]) & on).sum()) \
         if not table.empty else 0
-    print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table)} metric(s) passed, "
-          f"{len(found)} problem(s)", file=stream)
+    n_off = int((~on).sum()) if not table.empty else 0
+    print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table) - n_off} metric(s) "
+          "passed" + (f", {n_off} not gated (not converged)" if n_off else "")
+          + f", {len(found)} problem(s)", file=stream)
     for line in found:
         print(line, file=stream)
     if found:

@@ -26,8 +26,9 @@ uncertainty of f1) and of the coarser pair, the asymptotic-range ratio and a sta
 or ``exact``) with its reason in ``note``.  ``summary.csv`` gets a last column
 :data:`FLAG_COLUMN` naming the gated quantities of each row whose study is neither
 ``converged`` nor ``exact`` (blank: none, or no study for that solver); ``gate`` prints
-them as ``NOT CONVERGED (grid) …`` notes (they do not fail the gate yet) and the report
-flags them.
+them as ``NOT CONVERGED (grid) …`` notes and the report flags them; their metric rows
+(for either solver of a pair) are marked "not converged" and not gated
+(:func:`flag_metrics`): a number without a converged value is shown, not compared.
 
 Only the spatial discretisation changes: the time or sliding step, the stress-output
 layers (``stress.nz``) and, for the FEM, the block and the surface grid it is sampled
@@ -45,6 +46,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pandas as pd
 from tqdm.auto import tqdm
 
@@ -59,10 +61,11 @@ from .write import jsonable
 RATIO = 1.5
 #: the scalars studied: those the comparisons gate, plus the load
 GATED = ("P", "contact_area", "a_x", "a_y", "p_max", "stick_area", "w_max", "wear_volume",
-         "vm_max")
+         "vm_max", "vm_max_below")
 #: units of the studied quantities (as in summary.csv)
 UNITS = {"P": "N", "contact_area": "mm²", "a_x": "mm", "a_y": "mm", "p_max": "MPa",
-         "stick_area": "mm²", "w_max": "mm", "wear_volume": "mm³", "vm_max": "MPa"}
+         "stick_area": "mm²", "w_max": "mm", "wear_volume": "mm³", "vm_max": "MPa",
+         "vm_max_below": "MPa"}
 #: the summary.csv column naming the quantities of a row that did not converge
 FLAG_COLUMN = "grid_not_converged"
 COLUMNS = convergence.TABLE_COLUMNS
@@ -292,6 +295,65 @@ def flag_summary(summary: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
     return summary.assign(**{FLAG_COLUMN: flags})
 
 
+def spread(row: Any, metric: str) -> float:
+    """How far apart the three values of a study row are, in the units of ``metric``:
+    (max − min) / |f1| for ``rel``; for ``cells`` the spread of the length (a semi-width,
+    or the equivalent radius √(A/π) of an area) over the finest cell size h1.  NaN when
+    a value is missing."""
+    f = np.array([row.f1, row.f2, row.f3], dtype=float)
+    if not np.isfinite(f).all():
+        return math.nan
+    if metric == "rel":
+        return float((f.max() - f.min()) / abs(f[0])) if f[0] != 0 else math.inf
+    if row.quantity in ("contact_area", "stick_area"):
+        f = np.sqrt(np.clip(f, 0.0, None) / math.pi)
+    return float((f.max() - f.min()) / row.h1)
+
+
+def flag_metrics(metrics: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
+    """``metrics`` with the rows of a studied quantity that is not converged set to
+    ``status`` "not converged", the ``note`` naming the solver, status and three values:
+    a number that the grids do not settle is shown, not gated (:mod:`reports.tolerances`).
+
+    Not converged means: the study of either solver of the pair (at that sweep point and
+    step) is neither converged nor exact, *and* its three values spread by more than that
+    solver's budget for the metric (:func:`spread`).  A quantity that oscillates within
+    its budget is settled to that budget and stays gated (its note says so), and so does
+    one whose study lacks a value (a failed coarse run is no evidence about the fine
+    one): the gate keeps every number it has no measured reason to drop."""
+    from .tolerances import NOT_CONVERGED, budget
+
+    bad = {(str(r.solver), "" if pd.isna(r.param) else str(r.param), int(r.step),
+            str(r.quantity)): r for r in unsettled(frame).itertuples(index=False)}
+    if not bad or metrics.empty:
+        return metrics
+    out = metrics.copy()
+    param = out["param"].fillna("").astype(str)
+    for k in range(len(out)):
+        q, metric = str(out["quantity"].iat[k]), str(out["metric"].iat[k])
+        dropped, kept = [], []
+        for solver in str(out["pair"].iat[k]).split("-"):
+            r = bad.get((solver, param.iat[k], int(out["step"].iat[k]), q))
+            if r is None:
+                continue
+            width, limit = spread(r, metric), budget(solver, q, metric)
+            order = f"order {r.order:.3g}" if math.isfinite(r.order) else "no order"
+            versus = "unknown" if math.isnan(width) else \
+                f"{width:.3g} {'>' if width > limit else '<='} budget {limit:g}"
+            text = (f"grid study: {solver} {r.status}, f = {r.f1:.6g}, {r.f2:.6g}, "
+                    f"{r.f3:.6g} on h = {r.h1:.4g}, {r.h2:.4g}, {r.h3:.4g} mm, {order}, "
+                    f"spread {versus}")
+            (dropped if width > limit else kept).append(text)
+        if not (dropped or kept):
+            continue
+        old = str(out["note"].iat[k]) if out["status"].iat[k] == NOT_CONVERGED else ""
+        if dropped:
+            out.iloc[k, out.columns.get_loc("status")] = NOT_CONVERGED
+        out.iloc[k, out.columns.get_loc("note")] = "; ".join(
+            [n for n in [old] if n] + dropped + [t + " (gated)" for t in kept])
+    return out
+
+
 def read_convergence(path: Path) -> pd.DataFrame:
     """``convergence.csv`` as a run writes it (a parser for
     :func:`reports.readers.read_result`): the required columns, numbers where a run
@@ -313,8 +375,8 @@ def read_convergence(path: Path) -> pd.DataFrame:
 def note_lines(case: str, frame: pd.DataFrame) -> list[str]:
     """One ``NOT CONVERGED (grid) <case> [param] step N <solver> <quantity>: …`` line per
     quantity of a convergence table that is neither converged nor exact, with its three
-    values (finest first), cell sizes and observed order: information for the gate, not
-    (yet) a failure."""
+    values (finest first), cell sizes and observed order: information for the gate, not a
+    failure (the quantity's metric rows are not gated, :func:`flag_metrics`)."""
     lines = []
     for r in unsettled(frame).itertuples(index=False):
         param = "" if pd.isna(r.param) else str(r.param)

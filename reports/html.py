@@ -18,9 +18,11 @@ from cases.result import atomic_write_text
 
 from . import gridstudy, plots
 from .gate import metrics_table, problems
+from .readers import gated
 from .results import CaseResults, Scan, not_converged, scan
 from .run_events import EVENTS_NOTE, events_view
 from .studies import convergence_frame, scales, study_frame
+from .tolerances import GATED
 
 CSS = """
 body{font-family:system-ui,sans-serif;margin:1.5em;max-width:1400px;color:#222}
@@ -29,6 +31,7 @@ table{border-collapse:collapse;font-size:.85em;margin:.5em 0}
 td,th{border:1px solid #bbb;padding:.15em .5em;text-align:right}
 th{background:#eef}td.l,th.l{text-align:left}
 tr.pass td{background:#e5f5e5}tr.fail td{background:#fbdcdc;font-weight:600}
+tr.ng td{background:#fff3cd}
 .warn{background:#fff3cd;border:1px solid #e0c060;padding:.5em 1em}
 .bad{color:#a00;font-weight:600}.ok{color:#070;font-weight:600}
 figure{margin:.5em 0}img{max-width:100%}
@@ -199,17 +202,42 @@ def _metrics(case: CaseResults) -> list[str]:
     if m.empty:
         parts.append("<p>No pair of solvers to compare.</p>")
     else:
-        n_ok = int(m["passed"].astype(str).str.lower().isin(["true", "1"]).sum())
-        cls = "ok" if n_ok == len(m) else "bad"
-        parts.append(f'<p class="{cls}">{n_ok} / {len(m)} metrics within tolerance</p>')
-        parts.append(table_html(_worst(m), status="passed", left=3))
+        on = gated(m)
+        n_ok, n_on = _n_passed(m), int(on.sum())
+        cls = "ok" if n_ok == n_on else "bad"
+        parts.append(f'<p class="{cls}">{n_ok} / {n_on} gated metrics within tolerance</p>')
+        if n_on:
+            parts.append(table_html(_worst(m[on]), status="passed", left=3))
+        if n_on < len(m):
+            parts.append(
+                f'<p class="bad">Not converged, so not gated ({len(m) - n_on} rows): the '
+                "largest value of each, and why (declared in the case file with its "
+                "measurements, or from the grid study below with its three values).</p>")
+            off = _worst(m[~on].assign(tolerance=1.0)).drop(columns=["tolerance", "passed"])
+            notes = m[~on].groupby(["pair", "quantity", "metric"], sort=False)["note"].first()
+            off["why"] = [notes[(r.pair, r.quantity, r.metric)]
+                          for r in off.itertuples(index=False)]
+            parts.append(table_html(off, left=3, row_class=lambda _: "ng"))
         cols = ["param", "step", "pair", "quantity", "metric", "value", "tolerance", "passed",
-                "tolerance_key"]
+                "status", "tolerance_key"]
         parts.append("<details><summary>All metrics</summary><div class='scroll'>"
-                     + table_html(m[[c for c in cols if c in m.columns]], status="passed",
-                                  left=5) + "</div></details>")
+                     + table_html(m[[c for c in cols if c in m.columns]], left=5,
+                                  row_class=_metric_row_class) + "</div></details>")
     parts.append("</div>")
     return parts
+
+
+def _n_passed(m: pd.DataFrame) -> int:
+    """How many gated metric rows passed."""
+    if m.empty:
+        return 0
+    return int((m["passed"].astype(str).str.lower().isin(["true", "1"]) & gated(m)).sum())
+
+
+def _metric_row_class(row: pd.Series) -> str:
+    if str(row.get("status", GATED)) not in ("", GATED, "nan"):
+        return "ng"
+    return "pass" if str(row["passed"]).lower() in ("true", "1") else "fail"
 
 
 def _study_row_class(row: pd.Series) -> str:
@@ -236,8 +264,8 @@ def _convergence(case: CaseResults) -> list[str]:
             "sizes h in units of a0.</p>")
         cls = "ok" if bad.empty else "bad"
         parts.append(f'<p class="{cls}">{len(study) - len(bad)} / {len(study)} quantities '
-                     "converged or exact" + (f"; {len(bad)} not converged (flagged, not "
-                                             "gated yet): " + _e(", ".join(dict.fromkeys(
+                     "converged or exact" + (f"; {len(bad)} not converged (flagged, their "
+                                             "metrics not gated): " + _e(", ".join(dict.fromkeys(
                                                  bad["quantity"]))) if len(bad) else "")
                      + "</p>")
         table = table_html(study, left=5, row_class=_study_row_class)
@@ -344,13 +372,13 @@ def render(results: Scan, out: Path) -> str:
             continue
         sections.append(section)
         m = case.metrics
-        n_ok = int(m["passed"].astype(str).str.lower().isin(["true", "1"]).sum()) \
-            if not m.empty else 0
+        n_ok, n_on = _n_passed(m), int(gated(m).sum()) if not m.empty else 0
         bad = len(not_converged(case.summary))
         grid = len(gridstudy.unsettled(case.convergence))
-        status = "ok" if n_ok == len(m) and not bad else "bad"
+        status = "ok" if n_ok == n_on and not bad else "bad"
         toc.append(f'<li><a href="#case-{_e(case.name)}">{_e(case.name)}</a> '
-                   f'<span class="{status}">{n_ok}/{len(m)} metrics passed'
+                   f'<span class="{status}">{n_ok}/{n_on} metrics passed'
+                   + (f", {len(m) - n_on} not gated" if n_on < len(m) else "")
                    + (f", {bad} not converged" if bad else "") + "</span>"
                    + (f' <span class="bad">{grid} quantities not grid-converged</span>'
                       if grid else "") + "</li>")
@@ -363,8 +391,11 @@ def render(results: Scan, out: Path) -> str:
         warn = (f'<div class="warn" id="incomplete"><b>Incomplete or damaged runs (not '
                 f"reported):</b><ul>{items}</ul></div>")
     found = problems(results)
-    verdict = (f'<p class="ok" id="verdict">Gate: pass ({len(metrics_table(results))} '
-               "metrics)</p>" if not found else
+    table = metrics_table(results)
+    n_on = int(gated(table).sum()) if not table.empty else 0
+    off = f", {len(table) - n_on} not converged and not gated" if n_on < len(table) else ""
+    verdict = (f'<p class="ok" id="verdict">Gate: pass ({n_on} gated metrics{off})</p>'
+               if not found else
                f'<p class="bad" id="verdict">Gate: {len(found)} problem(s)</p><ul>'
                + "".join(f"<li>{_e(x)}</li>" for x in found[:50]) + "</ul>")
     return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"

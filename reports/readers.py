@@ -20,6 +20,7 @@ import pandas as pd
 from cases.result import SUMMARY_COLUMNS, StepResult, load_step
 
 from .errors import IncompleteRun
+from .tolerances import GATED, NOT_CONVERGED
 
 T = TypeVar("T")
 
@@ -203,7 +204,8 @@ def read_metrics(path: Path) -> pd.DataFrame:
     """``metrics.csv`` with ``passed`` recomputed from value and tolerance
     (:func:`passes`); what the file recorded is kept as ``passed_recorded``."""
     frame = read_csv(path, required=METRICS_REQUIRED,
-                     text=("quantity", "pair", "metric", "param", "case", "tolerance_key"),
+                     text=("quantity", "pair", "metric", "param", "case", "tolerance_key",
+                           "status", "note"),
                      numeric=("value", "tolerance", "s", "cycle"), integer=["step"])
     missing = [c for c in ("param", "step") if c not in frame.columns]
     if missing and not frame.empty:
@@ -219,7 +221,24 @@ def read_metrics(path: Path) -> pd.DataFrame:
                         "not a positive number")
     frame["passed_recorded"] = frame["passed"].astype(bool)
     frame["passed"] = passes(frame["value"], frame["tolerance"])
+    status = frame["status"].fillna("").replace("", GATED) if "status" in frame.columns \
+        else pd.Series(GATED, index=frame.index, dtype=object)
+    bad = ~status.isin([GATED, NOT_CONVERGED])
+    if bad.any():
+        i = int(np.flatnonzero(bad.to_numpy())[0])
+        raise Malformed(f"column 'status' holds {str(status.iloc[i])[:40]!r} (data row "
+                        f"{i + 1}), not {GATED!r} or {NOT_CONVERGED!r}")
+    frame["status"] = status
+    frame["note"] = frame["note"].fillna("") if "note" in frame.columns else ""
     return frame
+
+
+def gated(metrics: pd.DataFrame) -> pd.Series:
+    """Which metric rows are gated (``status`` "gated"; not those of a quantity that is
+    not converged, :mod:`reports.tolerances`)."""
+    if "status" not in metrics.columns:
+        return pd.Series(True, index=metrics.index)
+    return metrics["status"].fillna(GATED).replace("", GATED) == GATED
 
 
 def read_table(path: Path) -> pd.DataFrame:

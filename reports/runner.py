@@ -212,6 +212,8 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     parts = [got.metrics[i] for i in sorted(got.metrics) if not got.metrics[i].empty]
     metrics = pd.concat(parts, ignore_index=True) if parts else \
         pd.DataFrame(columns=METRICS_COLUMNS)
+    if study is not None:
+        metrics = gridstudy.flag_metrics(metrics, study.table)
     write_csv(staging / layout.METRICS, metrics)
     body = _manifest_body(plan, got, t0, unit_wall, sources)
     if plan.convergence:

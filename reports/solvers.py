@@ -89,7 +89,7 @@ def grid_budget(quantity: str, metric: str) -> float:
     if quantity == "loop_q":
         return 0.0025
     if metric == "rel":
-        return 0.02 if quantity == "vm_max" else 0.03
+        return 0.02 if quantity in ("vm_max", "vm_max_below") else 0.03
     if metric in ("l2", "max"):
         if quantity in _PLANES:
             return 0.03 if metric == "l2" else 0.08

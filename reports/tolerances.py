@@ -8,9 +8,10 @@ quantity          metrics             meaning
 p_n, p_x, p_y     l2, max             surface tractions over the contact (where both
 wear_a, wear_b                        solvers have p_n > 0) and wear depths of body a / b
 vm_xz, vm_yz      l2, max             σ_VM on the xz / yz plane through the load centre
-p_max, w_max,     rel                 scalars of ``summary.csv``
-wear_volume,
-vm_max
+p_max, w_max,     rel                 scalars of ``summary.csv``; ``vm_max_below`` is the
+wear_volume,                          σ_VM maximum over the planes at depth z ≥
+vm_max,                               ``stress.z_below`` (set in the case), the converged
+vm_max_below                          companion of a singular surface maximum
 a_x, a_y          cells               contact semi-widths through the centre
 contact_area,     cells               equivalent radius √(A/π) of the contact / stick zone
 stick_area
@@ -42,6 +43,17 @@ Tolerance keys: the quantity name for a single-metric quantity (``p_max``, ``a_x
 pair and a dot (``"ic-fem.p_max"``, a quoted TOML key) it applies to that pair only.
 Lookup order: pair-specific key in the case, plain key in the case, default of the pair.
 
+Not converged.  A quantity that is not a converged number is compared and shown but not
+gated: its metric rows carry ``status`` "not converged" and a ``note`` saying why.  Two
+sources: the case file's ``[not_converged]`` table (quantity -> the reason, with the
+measured values; for a quantity the code knows to be singular, e.g. the surface σ_VM
+maximum at the step-like edge of a worn frictional pin, docs/formulation.md §2.6), and a
+grid study of the run (``run --convergence``) whose status for the quantity is neither
+converged nor exact for either solver of the pair (:func:`reports.gridstudy.flag_metrics`).
+A case file may not both declare a quantity not converged and set a tolerance for it, and
+declaring ``vm_max`` needs ``stress.z_below``: its companion ``vm_max_below`` is gated
+instead.
+
 Defaults.  Each solver has an *error budget* per metric: the error it is expected to make
 against the exact solution at the resolution the bundled cases use (quick grids
 included), held in its registry record (:mod:`reports.solvers`, where the reasoning is);
@@ -59,7 +71,7 @@ from . import solvers
 
 SURFACE_FIELDS = ("p_n", "p_x", "p_y", "wear_a", "wear_b")
 PLANE_FIELDS = {"vm_xz": "xz", "vm_yz": "yz"}
-REL_SCALARS = ("p_max", "w_max", "wear_volume", "vm_max")
+REL_SCALARS = ("p_max", "w_max", "wear_volume", "vm_max", "vm_max_below")
 LENGTH_SCALARS = ("a_x", "a_y")
 AREA_SCALARS = ("contact_area", "stick_area")
 #: quantities computed from the solvers' tables per cycle (fretting): table, metric
@@ -122,3 +134,25 @@ def check_keys(case: Case, solver_names: list[str]) -> None:
                 )
         if not math.isfinite(case.tolerances[raw]):
             raise CaseError(f"tolerances.{raw}: must be finite")
+        if KEYS[key][0] in case.not_converged:
+            raise CaseError(f"tolerances.{raw}: {KEYS[key][0]!r} is declared not converged "
+                            "([not_converged]); it is not gated, so a tolerance for it is "
+                            "meaningless (remove one of the two)")
+    for quantity in case.not_converged:
+        if quantity not in METRICS:
+            raise CaseError(f"not_converged.{quantity}: unknown quantity (known: "
+                            f"{', '.join(sorted(METRICS))})")
+    if "vm_max" in case.not_converged and case.stress.z_below is None:
+        raise CaseError("not_converged.vm_max needs its converged companion: set "
+                        "stress.z_below, the depth [mm] below which vm_max_below is gated")
+
+
+#: the ``status`` of a metric row
+GATED, NOT_CONVERGED = "gated", "not converged"
+
+
+def status(case: Case, quantity: str) -> tuple[str, str]:
+    """(status, note) of a quantity's metric rows from the case file."""
+    if quantity in case.not_converged:
+        return NOT_CONVERGED, "declared: " + " ".join(case.not_converged[quantity].split())
+    return GATED, ""

@@ -14,7 +14,7 @@ from pathlib import Path
 import numpy as np
 
 from cases.model import Case, CaseError
-from cases.result import RunResult, StepResult, save_step
+from cases.result import RunResult, StepResult, save_step, vm_max_below
 
 from . import layout, solvers
 from .plan import CasePlan
@@ -95,8 +95,18 @@ def run_unit(fn: Callable[..., RunResult], case: Case, solver: str, index: int,
                            detail=traceback.format_exc())
     result.solver, result.param = solver, case.param
     result.case = case.name
+    add_derived(result, case)
     return UnitOutcome(index, solver, case.param, result, time.perf_counter() - t0,
                        cell_size=solvers.record(solver).cell_size(case))
+
+
+def add_derived(result: RunResult, case: Case) -> None:
+    """Scalars the reports derive from every solver's fields alike: ``vm_max_below``
+    (:func:`cases.result.vm_max_below`) when the case sets ``stress.z_below``."""
+    if case.stress.z_below is None:
+        return
+    for step in result.steps:
+        step.scalars["vm_max_below"] = vm_max_below(step.planes, case.stress.z_below)
 
 
 def failure_line(case: str, outcome: UnitOutcome) -> str:

@@ -1,5 +1,6 @@
 """`contact-vv run --convergence`: three-grid studies of every numerical solver, written
-to convergence.csv, flagged in summary.csv, the report and the gate (not gated yet).
+to convergence.csv, flagged in summary.csv, the report and the gate; their metric rows
+are not gated when the three values spread beyond the solver's budget.
 
 Fake solvers (test_cli_fakes) with a manufactured peak pressure p_max = p0 (1 + C (h/a0)²)
 (order 2 exactly), a σ_VM maximum that oscillates with the grid and a load that diverges
@@ -25,9 +26,11 @@ from cases.model import CaseError
 from reports import convergence, gridstudy, solvers
 from reports.cli import main
 from reports.gate import run_gate
+from reports.readers import read_metrics
 
 C_MANUFACTURED = 0.1  # p_max = p0 (1 + C (h/a0)^2)
 OSCILLATION = {21: 1.0, 13: -1.0, 7: 1.0}  # sign of the σ_VM,max wiggle per cell count
+WIGGLE = 0.05  # its size: the three values spread by 10 %, beyond the 2 % budget
 CELLS = (21, 13, 7)  # HERTZ (nx = 21) coarsened twice by >= 1.5, odd counts kept
 
 
@@ -39,7 +42,7 @@ def solve_manufactured(case, *, progress=False, on_output=None):
     for step in result.steps:
         s = step.scalars
         s["p_max"] = p0 * (1.0 + C_MANUFACTURED * (h / a0) ** 2)
-        s["vm_max"] *= 1.0 + 0.01 * OSCILLATION.get(case.grid.nx, 0.0)
+        s["vm_max"] *= 1.0 + WIGGLE * OSCILLATION.get(case.grid.nx, 0.0)
         s["P"] = case.load.P * (1.0 + 0.01 * a0 / h)  # grows without bound as h -> 0
     return result
 
@@ -186,6 +189,33 @@ def test_non_convergent_quantities_are_flagged(studied):
     assert "ic p_max:" not in printed
 
 
+def test_a_non_convergent_quantity_is_flagged_not_gated(tmp_path, manufactured, capsys):
+    """vm_max oscillates with the grid by more than its budget (made so): with a grid
+    study its metric rows are "not converged" with the three values and not gated, so a
+    tolerance it exceeds does not fail the gate; without the study the same tolerance
+    fails it.  The converged p_max stays gated."""
+    case = write_case(tmp_path, HERTZ, "small")
+    tight = ("--set", "tolerances.vm_max=0.01")  # the fake's vm_max is 5 % off
+    out = tmp_path / "res"
+    assert run(str(case), "--convergence", "--out", str(out), *tight) == 0
+    m = read_metrics(out / "small" / "metrics.csv").set_index("quantity")
+    assert m.loc["vm_max", "value"] == pytest.approx(WIGGLE, rel=1e-6)
+    assert m.loc["vm_max", "status"] == "not converged"
+    assert re.match(r"grid study: ic oscillating, f = [\d.]+, [\d.]+, [\d.]+ on h = "
+                    r"0\.07619, 0\.1231, 0\.2286 mm, order [\d.]+, spread 0\.0952 > budget "
+                    r"0\.02$", m.loc["vm_max", "note"])
+    assert m.loc["p_max", "status"] == "gated"
+    stream = io.StringIO()
+    assert run_gate(out, stream=stream) == 0
+    assert "NOT GATED small ic-analytic vm_max rel" in stream.getvalue()
+    plain = tmp_path / "plain"
+    assert run(str(case), "--out", str(plain), *tight) == 0
+    capsys.readouterr()
+    assert main(["gate", "--out", str(plain)]) == 1
+    assert "FAIL small step 0 ic-analytic vm_max rel = 0.05 > tolerance 0.01" in \
+        capsys.readouterr().out
+
+
 def test_coarse_runs_write_no_fields_and_leave_the_results_unchanged(studied, tmp_path):
     case, out = studied
     root = out / "small"
@@ -199,12 +229,19 @@ def test_coarse_runs_write_no_fields_and_leave_the_results_unchanged(studied, tm
     assert all(u["wall_s"] >= 0 for u in mf["units"])
     assert mf["convergence"]["ratio"] == 1.5
     # without the flag: the same summary (but the flag column and wall times) and metrics
+    # (but the status and note of the quantities the study found not converged)
     plain = tmp_path / "plain"
     assert run(str(case), "--out", str(plain)) == 0
     a = pd.read_csv(root / "summary.csv").drop(columns=["wall_s", gridstudy.FLAG_COLUMN])
     b = pd.read_csv(plain / "small" / "summary.csv").drop(columns=["wall_s"])
     pd.testing.assert_frame_equal(a, b)
-    assert (root / "metrics.csv").read_bytes() == (plain / "small" / "metrics.csv").read_bytes()
+    ma, mb = (pd.read_csv(d / "metrics.csv", keep_default_na=False) for d in
+              (root, plain / "small"))
+    changed = ma["status"] != mb["status"]
+    assert set(ma.loc[changed, "quantity"]) == {"vm_max"}  # the oscillating one
+    assert (mb["status"] == "gated").all() and (mb["note"] == "").all()
+    pd.testing.assert_frame_equal(ma.drop(columns=["status", "note"]),
+                                  mb.drop(columns=["status", "note"]))
     assert not (plain / "small" / "convergence.csv").exists()
     # a re-run over a result with convergence.csv replaces it (its own file)
     assert run(str(case), "--out", str(out)) == 0
