@@ -7,20 +7,28 @@ Kinematics (formulation Eqs. 1-2, global frame, z into body a): at a surface poi
 with ``u = u^(a) − u^(b)`` the relative surface displacement, ``h`` the indenter
 profile, ``w`` the wear depths and ``δ`` the rigid approach.
 
-Laws (penalty regularisation of Eqs. 7, 8, 13):
+Laws (augmented penalty regularisation of Eqs. 7, 8, 13; multipliers λ_n, λ_t):
 
-- normal: ``p_n = k_n ⟨−g_n⟩`` (Eq. 15 with ``p_n* = k_n (−g_n)``);
-- friction: an elastic predictor ``p_t* = p_t,old − k_t 𝕄² Δg_t`` (the augmented
-  traction of Eq. 16) and the radial projection onto the friction ellipse
-  ``‖p_t‖_μ ≤ p_n`` (Eqs. 9, 17): ``p_t = p_n p_t*/‖p_t*‖_μ`` when ``‖p_t*‖_μ > p_n``.
-  With the 𝕄²-weighted penalty this projection is the closest point in the metric of the
-  penalty, so the plastic slip increment is ``∝ −𝕄⁻² p_t`` — the associated sliding rule
-  (Eq. 13, erratum 11);
+- normal: ``p_n = ⟨λ_n − k_n g_n⟩`` (Eq. 15 with ``p_n* = λ_n − k_n g_n``);
+- friction: a predictor ``p_t* = λ_t − k_t 𝕄² Δg_t`` (the augmented traction of Eq. 16,
+  Δg_t the tangential gap since the last converged state) and the radial projection onto
+  the friction ellipse ``‖p_t‖_μ ≤ p_n`` (Eqs. 9, 17): ``p_t = p_n p_t*/‖p_t*‖_μ`` when
+  ``‖p_t*‖_μ > p_n``.  With the 𝕄²-weighted penalty this projection is the closest point
+  in the metric of the penalty, so the slip increment is ``∝ −𝕄⁻² p_t`` — the associated
+  sliding rule (Eq. 13, erratum 11);
 - full sliding along a unit direction d (slip of a relative to b): ``p_t = −p_n 𝕄² d/‖d‖*_μ``
   (Eq. 13 with ġ_t ∥ d, Eq. 10);
 - wear (Eq. 23, backward Euler like step IV of §3.4): a step that slides every point by
   Δg adds ``Δw = p_n ‖Δg‖_i`` (Eq. 21) to each body; with the wear in the gap the
-  penalty law becomes ``p_n = k_n/(1 + k_n c_w) ⟨−g_n⟩`` with ``c_w = ‖Δg‖_i,a + ‖Δg‖_i,b``.
+  normal law becomes ``p_n = ⟨λ_n − k_n g_n⟩/(1 + k_n c_w)`` with
+  ``c_w = ‖Δg‖_i,a + ‖Δg‖_i,b``.
+
+:func:`newton` solves the laws with the multipliers held (λ_n = 0 and λ_t the last
+converged traction: the plain penalty method); :func:`augmented` updates the multipliers
+to the tractions until they no longer change (Alart & Curnier 1991, the Uzawa iteration
+of Eqs. 15-17), which makes the gap zero and a stick point fixed exactly, independently
+of the penalty.  The points are the surface nodes with dual weights
+(:mod:`fem_reference.nodal`): one condition per node.
 
 The elastic response is condensed onto the surface DOFs: ``u = C f`` with the nodal
 forces ``f = Gᵀ W t`` on body a, and the Newton iteration works on the dense stiffness
@@ -79,7 +87,8 @@ class Law:
 
 @dataclass
 class Points:
-    """Contact evaluation points: quadrature points (weights > 0) or probes (weights 0)."""
+    """Contact evaluation points: the surface nodes (dual weights > 0, ``G`` giving the
+    modified coefficients, :mod:`fem_reference.nodal`) or probes (weights 0)."""
 
     G: sp.csr_matrix  # (3n, m): condensed DOFs -> [u_x; u_y; u_z]
     w: np.ndarray  # integration weights [mm²]
@@ -88,13 +97,14 @@ class Points:
     inside: np.ndarray  # points of the contact zone (others are never in contact)
     wear_a: np.ndarray | None = None  # wear depths of the bodies (n,)
     wear_b: np.ndarray | None = None
-    t_old: np.ndarray | None = None  # traction at the last converged state (n, 2)
+    t_old: np.ndarray | None = None  # tangential multiplier λ_t (n, 2): see evaluate
     gt_old: np.ndarray | None = None  # tangential gap at the last converged state (n, 2)
+    lam_n: np.ndarray | None = None  # normal multiplier λ_n (n,): see evaluate
 
     def __post_init__(self) -> None:
         n = self.w.size
         for name, shape in (("wear_a", (n,)), ("wear_b", (n,)), ("t_old", (n, 2)),
-                            ("gt_old", (n, 2))):
+                            ("gt_old", (n, 2)), ("lam_n", (n,))):
             if getattr(self, name) is None:
                 setattr(self, name, np.zeros(shape))
 
@@ -120,13 +130,21 @@ class Evaluation:
 
 def evaluate(law: Law, pts: Points, u: np.ndarray, delta: float, D: np.ndarray,
              cw: float = 0.0) -> Evaluation:
-    """Tractions on body a, states and consistent tangents at the points ``pts``."""
+    """Tractions on body a, states and consistent tangents at the points ``pts``.
+
+    Augmented laws (Eqs. 15-17 with the multipliers ``pts.lam_n``, ``pts.t_old``):
+    ``p_n = ⟨λ_n − k_n g_n⟩ / (1 + k_n c_w)`` and the predictor
+    ``p_t* = λ_t − k_t 𝕄² (g_t − g_t,old)``.  With λ_n = 0 and λ_t the last converged
+    traction they are the plain penalty laws; :func:`augmented` iterates the multipliers
+    until the gap and the stick condition hold exactly.
+    """
     n = pts.n
     disp = pts.displacement(u)
     gn = pts.h + pts.wear_a + pts.wear_b - delta + disp[:, 2]
     k = law.k_n / (1.0 + law.k_n * cw)
-    active = (gn < 0.0) & pts.inside
-    pn = np.where(active, -k * gn, 0.0)
+    trial = pts.lam_n / law.k_n - gn  # (λ_n − k_n g_n) / k_n
+    active = (trial > 0.0) & pts.inside
+    pn = np.where(active, k * trial, 0.0)
     dpn_du = np.where(active, -k, 0.0)
     dpn_dd = np.where(active, k, 0.0)
     T = np.zeros((n, 3, 3))
@@ -207,19 +225,24 @@ class Solution:
     ev: Evaluation
     iterations: int
     residual: float
+    outer: int = 1  # multiplier updates (augmented Lagrangian)
 
 
-def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray) -> np.ndarray:
+def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray,
+                     memo: dict | None = None) -> np.ndarray:
     """Solve ``(K + B) x = rhs`` with ``K = C⁻¹`` (dense) and a sparse contact tangent B.
 
     B only couples the DOFs A (its nonzero rows and columns) touched by points in
     contact, so with the push-through (Woodbury) identity
     ``(K + B)⁻¹ = C − C_{:A} (I + B_AA C_AA)⁻¹ B_AA C_{A:}`` the dense factorisation
-    shrinks from all condensed DOFs to the DOFs in contact.
+    shrinks from all condensed DOFs to the DOFs in contact.  ``memo`` keeps
+    the last factorisation: the passes of an augmented solve mostly repeat the tangent
+    of the pass before (same contact and stick sets), and then reuse it.
     """
     y = C @ rhs
     B = sp.csr_matrix(B)
     B.eliminate_zeros()
+    B.sort_indices()
     # the DOFs of nonzero rows and columns: a point's tangent need not be symmetric
     # (slip couples t to u_n, not p_n to u_t), and a row without its column would be
     # lost by B_AA
@@ -227,14 +250,25 @@ def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray) -> np.ndarr
     if A.size == 0:
         return y
     BAA = B[A][:, A]
-    M = BAA @ C[np.ix_(A, A)]
-    M[np.diag_indices_from(M)] += 1.0
-    z = la.solve(M, BAA @ y[A], check_finite=False)
+    same = (memo is not None and memo.get("A") is not None
+            and np.array_equal(memo["A"], A) and np.array_equal(memo["indptr"], BAA.indptr)
+            and np.array_equal(memo["indices"], BAA.indices)
+            and np.array_equal(memo["data"], BAA.data))
+    if same:
+        lu = memo["lu"]
+    else:
+        M = BAA @ C[np.ix_(A, A)]
+        M[np.diag_indices_from(M)] += 1.0
+        lu = la.lu_factor(M, overwrite_a=True, check_finite=False)
+        if memo is not None:
+            memo.update(A=A, indptr=BAA.indptr, indices=BAA.indices, data=BAA.data, lu=lu)
+    z = la.lu_solve(lu, BAA @ y[A], check_finite=False)
     return y - C[:, A] @ z
 
 
 def newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray, *,
-           cw: float = 0.0, tol: float = 1e-9, max_iter: int = 60) -> Solution:
+           cw: float = 0.0, tol: float = 1e-9, max_iter: int = 150,
+           memo: dict | None = None) -> Solution:
     """Semi-smooth Newton iteration of the condensed contact problem.
 
     ``K`` is the condensed stiffness, ``C = K⁻¹`` the compliance.
@@ -244,12 +278,55 @@ def newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u
     Raises :class:`ContactConvergenceError` with the residual if it does not converge.
     """
     with blas_threads(1):
-        return _newton(K, C, law, pts, ctrl, u0, cw=cw, tol=tol, max_iter=max_iter)
+        return _newton(K, C, law, pts, ctrl, u0, cw=cw, tol=tol, max_iter=max_iter,
+                       memo=memo)
+
+
+MAX_OUTER = 40  # multiplier updates of one augmented solve
+
+
+def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control,
+              u0: np.ndarray, *, cw: float = 0.0, tol: float = 1e-9,
+              max_outer: int = MAX_OUTER) -> Solution:
+    """Augmented-Lagrangian solve (Alart & Curnier 1991; Eqs. 15-17 on the penalty): the
+    penalty Newton solve of :func:`newton` with the multipliers λ_n = ``pts.lam_n`` and
+    λ_t = ``pts.t_old`` held, then ``λ ← (p_n, p_t)``, until the multipliers change by
+    less than ``tol`` times the largest pressure.  At that fixed point the gap of every
+    pressed point is zero (``λ_n − k_n g_n = λ_n``) and a stick point has not slipped
+    since the last converged state, whatever the penalty: the penalty sets only the rate
+    (each update shrinks the constraint violation by about the ratio of the surface
+    stiffness to k_n).  ``iterations`` of the result: Newton iterations of every pass.
+    """
+    u, delta, D = u0, float(ctrl.delta), np.array(ctrl.D, dtype=float)
+    total = 0
+    change = float("inf")
+    memo: dict = {}
+    for outer in range(1, max_outer + 1):
+        step_ctrl = Control(P=ctrl.P, delta=delta, D=D, Q=ctrl.Q, sym=ctrl.sym)
+        sol = newton(K, C, law, pts, step_ctrl, u, cw=cw, tol=tol, memo=memo)
+        total += sol.iterations
+        ev = sol.ev
+        scale = max(float(ev.pn.max(initial=0.0)), 1e-300)
+        change = float(np.abs(ev.pn - pts.lam_n).max(initial=0.0))
+        pts.lam_n = ev.pn.copy()
+        if law.mode == "friction":  # λ_t: only the friction law with history has one
+            change = max(change, float(np.abs(ev.t - pts.t_old).max(initial=0.0)))
+            pts.t_old = ev.t.copy()
+        change /= scale
+        u, delta, D = sol.u, sol.delta, sol.D
+        if change < tol:
+            return Solution(u=u, delta=delta, D=D, ev=ev, iterations=total,
+                            residual=sol.residual, outer=outer)
+    raise ContactConvergenceError(
+        f"augmented Lagrangian did not converge in {max_outer} multiplier updates: "
+        f"relative multiplier change {change:.3e} (tolerance {tol:.1e})"
+    )
 
 
 def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray,
-            *, cw: float, tol: float, max_iter: int) -> Solution:
-    eqs = _Equations(K=K, C=C, law=law, pts=pts, ctrl=ctrl, cw=cw, extra=_unknowns(ctrl))
+            *, cw: float, tol: float, max_iter: int, memo: dict | None = None) -> Solution:
+    eqs = _Equations(K=K, C=C, law=law, pts=pts, ctrl=ctrl, cw=cw, extra=_unknowns(ctrl),
+                     memo=memo)
     u = u0.copy()
     delta = float(ctrl.delta)
     D = np.array(ctrl.D, dtype=float)
@@ -294,6 +371,7 @@ class _Equations:
     ctrl: Control
     cw: float
     extra: tuple[tuple[str, int | None], ...]
+    memo: dict | None = None  # the last factorisation (:func:`_solve_stiffened`)
 
     def residual(self, u: np.ndarray, delta: float, D: np.ndarray
                  ) -> tuple[Evaluation, np.ndarray, np.ndarray, np.ndarray]:
@@ -338,7 +416,7 @@ class _Equations:
             for j, d in enumerate(dcols):
                 W[i, j] = np.sum(w * d[:, r])
         try:
-            X = _solve_stiffened(self.C, B, np.column_stack([-Ru, U]))
+            X = _solve_stiffened(self.C, B, np.column_stack([-Ru, U]), self.memo)
             xu, Xu = X[:, 0], X[:, 1:]
             dx_e = la.solve(W - V @ Xu, -Re - V @ xu) if ne else np.zeros(0)
         except (la.LinAlgError, ValueError) as exc:

@@ -1,11 +1,11 @@
 """The reported contact region of a step: output states, semi-widths, boundary and area.
 
-A point counts as closed when its gap lies below ε = ``GAP_TOL`` × a_ref²/R (the Hertz
-approach; see :func:`contact_states`).  The contact boundary r(θ) is the outermost
+A probe counts as closed when more than half of its interpolation weight sits on nodes
+in contact (:func:`closing_measure`).  The contact boundary r(θ) is the outermost
 closed point along rays from the centre (:func:`ray_extent`); a grid cell is closed
-inside it, and then stick or slip by the return map at its centre.  The contact area is
-the area inside r(θ), the semi-widths ``a_x, a_y`` half the closed length of the lines
-through the centre (:func:`semi_width`).
+inside it, and then stick or slip by its state.  The contact area is the area inside
+r(θ), the semi-widths ``a_x, a_y`` half the closed length of the lines through the
+centre (:func:`semi_width`).
 """
 
 from __future__ import annotations
@@ -17,33 +17,33 @@ import numpy as np
 
 from cases.result import OPEN, SLIP, STICK
 
-from .contact import Evaluation
 from .sampling import ProbeLayout
 
-GAP_TOL = 1e-4  # a gap below GAP_TOL * a_ref²/R (the Hertz approach) counts as closed
+
+def contact_states(closing: np.ndarray, state: np.ndarray) -> np.ndarray:
+    """Output states: closed points (``closing < 0``) are stick or slip as ``state``
+    says, the others open."""
+    closed = closing < 0
+    return np.where(closed, np.where(state == STICK, STICK, SLIP), OPEN).astype(np.int8)
 
 
-def gap_tolerance(a_ref: float, R: float) -> float:
-    """ε: gaps below it count as closed (``GAP_TOL`` times the Hertz approach a_ref²/R)."""
-    return GAP_TOL * a_ref**2 / R
+def closing_measure(active_weight: np.ndarray) -> np.ndarray:
+    """``1/2 − w``: negative where the active weight ``w`` of a probe (the indicator of
+    the nodes in contact, interpolated linearly on the sub-triangles) exceeds 1/2.
 
-
-def contact_states(ev: Evaluation, eps: float) -> np.ndarray:
-    """Output states: closed (gap < eps) points are stick or slip, the others open.
-
-    The penalty law loads only penetrating points, and near the contact edge the sign of
-    a gap of the order of the FE interpolation error (≪ p/k_n) decides; counting gaps
-    below a tolerance ε as closed makes the contact region independent of the penalty.
-    Outside the contact the Hertz gap grows like δ (r/a − 1)^(3/2), so ε = 1e-4 δ moves
-    the edge by about 0.2 % of a.
+    Each node carries one contact condition, so the discrete contact boundary lies
+    between the last node in contact and the first open one; the midpoint is the
+    unbiased estimate.  Neither the gap (zero at the nodes in contact, positive between
+    the last of them and the first open node whatever the mesh) nor the support of the
+    pressure (which reaches the first open node) is: they put the edge one node spacing
+    inside or outside.
     """
-    closed = ev.gn < eps
-    return np.where(closed, np.where(ev.state == STICK, STICK, SLIP), OPEN).astype(np.int8)
+    return 0.5 - active_weight
 
 
-def semi_width(s: np.ndarray, gn: np.ndarray, inside: np.ndarray, eps: float) -> float:
-    """Half the length of the closed interval (gap < eps) of a line, interpolated."""
-    g = gn - eps
+def semi_width(s: np.ndarray, closing: np.ndarray, inside: np.ndarray) -> float:
+    """Half the length of the closed interval (closing < 0) of a line, interpolated."""
+    g = closing
     c = (g < 0) & inside
     if not c.any():
         return 0.0
@@ -58,9 +58,10 @@ def semi_width(s: np.ndarray, gn: np.ndarray, inside: np.ndarray, eps: float) ->
     return 0.5 * (right - left)
 
 
-def ray_extent(r: np.ndarray, gn: np.ndarray, inside: np.ndarray, eps: float) -> np.ndarray:
-    """Radius of the outermost closed point (gap < eps) along each ray (rows), interpolated."""
-    g = gn - eps
+def ray_extent(r: np.ndarray, closing: np.ndarray, inside: np.ndarray) -> np.ndarray:
+    """Radius of the outermost closed point (closing < 0) along each ray (rows),
+    interpolated."""
+    g = closing
     c = (g < 0) & inside
     n = r.size
     last = n - 1 - np.argmax(c[:, ::-1], axis=1)
@@ -103,23 +104,24 @@ class ContactZone:
     a_y: float
 
 
-def contact_zone(layout: ProbeLayout, mapped: np.ndarray, ev: Evaluation, inside: np.ndarray,
-                 eps: float) -> ContactZone:
-    """The contact region from the probe evaluation ``ev`` (``mapped``: the probes in the
-    modelled part; ``inside``: probes in the FE contact zone; ``eps``: the closing gap).
+def contact_zone(layout: ProbeLayout, mapped: np.ndarray, closing: np.ndarray,
+                 state: np.ndarray, inside: np.ndarray) -> ContactZone:
+    """The contact region from the probes' ``closing`` measure (negative: closed,
+    :func:`closing_measure`) and return-map ``state`` (``mapped``: the probes in the
+    modelled part; ``inside``: probes in the FE contact zone).
 
-    Lines and rays are closed where their gap is below ``eps``
-    (:func:`contact_states`); grid cells inside the boundary r(θ) of the rays.
+    Lines and rays are closed where ``closing < 0``; grid cells inside the boundary r(θ)
+    of the rays.
     """
     ng = layout.ngrid
-    r_edge = ray_extent(layout.ray_r, layout.on_rays(ev.gn), layout.on_rays(inside), eps)
-    state = contact_states(ev, eps)
+    r_edge = ray_extent(layout.ray_r, layout.on_rays(closing), layout.on_rays(inside))
+    out = contact_states(closing, state)
     closed = inside_boundary(mapped[:ng], layout.theta, r_edge, layout.periodic) & inside[:ng]
-    state[:ng] = np.where(closed, np.where(ev.state[:ng] == STICK, STICK, SLIP), OPEN)
+    out[:ng] = np.where(closed, np.where(state[:ng] == STICK, STICK, SLIP), OPEN)
     lx, ly = layout.line_x, layout.line_y
     return ContactZone(
-        state=state, r_edge=r_edge,
+        state=out, r_edge=r_edge,
         area=sector_area(layout.theta, r_edge, layout.periodic),
-        a_x=semi_width(layout.line, ev.gn[lx], inside[lx], eps),
-        a_y=semi_width(layout.line, ev.gn[ly], inside[ly], eps),
+        a_x=semi_width(layout.line, closing[lx], inside[lx]),
+        a_y=semi_width(layout.line, closing[ly], inside[ly]),
     )

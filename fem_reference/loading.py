@@ -22,10 +22,11 @@ from collections.abc import Iterator
 import numpy as np
 
 from cases.model import Case, CaseError, SlidingWear
+from cases.result import OPEN, SLIP, STICK
 
-from .contact import Control, Evaluation, Solution, evaluate, newton
+from .contact import Control, Evaluation, Solution, augmented, evaluate
 from .model import FemError, FemUnsupported, slide_direction, wear_compliances
-from .run import OutputState, Run
+from .run import OutputState, Run, hertz_start
 
 N_NORMAL_DISSIMILAR = 5  # normal load increments of dissimilar materials
 N_TANGENTIAL = 5  # tangential load (or shift) increments
@@ -66,34 +67,52 @@ def solve_increment(run: Run, ctrl: Control, cw: float = 0.0) -> tuple[Solution,
     the FE contact zone (1.5 elements from r_c).
     """
     m = run.model
-    sol = newton(m.Krel, m.Crel, m.law, run.quad, ctrl, run.u, cw=cw,
-                 tol=max(1e-9, 10 * m.case.solver.tol))
+    sol = augmented(m.Krel, m.Crel, m.law, run.nodes, ctrl, run.u, cw=cw,
+                    tol=max(1e-9, 10 * m.case.solver.tol))
     ev = sol.ev
     active = ev.pn > 0
     if active.any():
-        rad = np.hypot(run.quad.xy[active, 0], run.quad.xy[active, 1]).max()
+        rad = np.hypot(run.nodes.xy[active, 0], run.nodes.xy[active, 1]).max()
         if rad > m.surface.r_c - 1.5 * m.h:
             raise FemError(
                 f"the contact (radius {rad:.4g} mm) reached the edge of the FE contact zone "
                 f"(r_c = {m.surface.r_c:.4g} mm)"
             )
     run.u, run.delta, run.D = sol.u, sol.delta, sol.D.copy()
-    probe_ev = evaluate(m.law, run.probes, run.u, run.delta, run.D, cw)
-    return sol, probe_ev
+    return sol, probe_evaluation(run, sol.ev, cw)
+
+
+def probe_evaluation(run: Run, ev: Evaluation, cw: float) -> Evaluation:
+    """The state at the probes: gaps from the P2 displacement field, tractions and
+    states from the nodal solution ``ev`` (linear on the facets' sub-triangles; a probe
+    sticks where its stick weight, the interpolated stick indicator, is at least 1/2)."""
+    m = run.model
+    probe = evaluate(m.law, run.probes, run.u, run.delta, run.D, cw)
+    Nsub = run.sampling.Nsub
+    pn = Nsub @ ev.pn
+    t = Nsub @ ev.t
+    stick = (Nsub @ (ev.state == STICK).astype(float)) >= 0.5
+    state = np.where(pn > 0.0, np.where(stick, STICK, SLIP), OPEN)
+    return Evaluation(gn=probe.gn, pn=pn, t=t, gt=probe.gt, state=state, T=probe.T,
+                      Tdelta=probe.Tdelta, TD=probe.TD)
 
 
 def commit(run: Run, sol: Solution, probe_ev: Evaluation) -> None:
     """Make the tractions and tangential gaps of a converged solve the friction history."""
-    for pts, ev in ((run.quad, sol.ev), (run.probes, probe_ev)):
+    for pts, ev in ((run.nodes, sol.ev), (run.probes, probe_ev)):
         pts.t_old = ev.t.copy()
         pts.gt_old = ev.gt.copy()
 
 
 def add_wear(run: Run, sol: Solution, probe_ev: Evaluation, ca: float, cb: float) -> None:
-    """Add the wear of a sliding step, Δw = p_n ‖Δg‖_i, to bodies a and b."""
-    for pts, ev in ((run.quad, sol.ev), (run.probes, probe_ev)):
-        pts.wear_a = pts.wear_a + ev.pn * ca
-        pts.wear_b = pts.wear_b + ev.pn * cb
+    """Add the wear of a sliding step, Δw = p_n ‖Δg‖_i, to bodies a and b: nodal
+    coefficients in the modified basis (the weighted gap, :mod:`fem_reference.nodal`),
+    and at the probes the wear field they define (the field the gap of the probes
+    holds)."""
+    dw = sol.ev.pn
+    for pts, inc in ((run.nodes, dw), (run.probes, run.Nmod @ dw)):
+        pts.wear_a = pts.wear_a + inc * ca
+        pts.wear_b = pts.wear_b + inc * cb
 
 
 def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
@@ -111,6 +130,8 @@ def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
         yield OutputState(step=0, sol=sol, probe_ev=pev, slip=slip, iterations=iters)
         return
     n_normal = 1 if case.identical_materials else N_NORMAL_DISSIMILAR
+    if n_normal > 1:  # start the first increment from its own Hertz solution
+        run.u, run.delta = hertz_start(m, run.nodes, 1.0 / n_normal)
     n_tangential = N_TANGENTIAL if mode in ("load", "shift") else 0
     with _bar(progress, n_normal + n_tangential, case) as bar:
         for i in range(1, n_normal + 1):

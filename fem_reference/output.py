@@ -3,14 +3,11 @@ the FE mesh.
 
 Surface fields on the case grid (cell centres; a quarter/half model is mirrored, and
 components odd under a mirror vanish on the mirror plane):
-``p_n`` is the L2 projection of the Gauss-point penalty pressure on the P2 surface space,
-limited to the range of the Gauss-point values around each point (see
-:meth:`fem_reference.recovery.TractionRecovery.p2`: the projection rings where the
-traction falls to zero inside a facet, at the edge of a worn flat), ``p_x, p_y`` the
-limited L2 projections of the tangential tractions on P1
-(:meth:`fem_reference.recovery.TractionRecovery.p1`: the Gauss-point values oscillate
-at the stick–slip boundary), all zero outside the contact; ``gap`` from the full FE
-displacements;
+``p_n, p_x, p_y`` the nodal tractions of the contact solve (one multiplier per surface
+node, :mod:`fem_reference.nodal`) interpolated linearly on the four sub-triangles of each
+facet — a monotone reconstruction that does not ring where the traction falls to zero
+inside a facet (the edge of a worn flat) — zero outside the contact; ``gap`` from the
+full FE displacements;
 ``state``: a cell is closed inside the contact boundary r(θ), the outermost point with
 a gap below ``GAP_TOL`` × δ0 along rays from the centre (robust against the penalty:
 see :func:`fem_reference.contact_zone.contact_states`), stick or slip by the return map
@@ -18,10 +15,10 @@ evaluated at the cell centre with its own history; ``wear_a/b`` likewise; ``slip
 the relative tangential displacement increment of the step (tangential loading: since
 the end of the normal loading; static full sliding: the unit slip direction).
 
-Scalars: ``P, Qx, Qy`` the resultants of the Gauss-point tractions; ``contact_area`` the
-area inside r(θ), ``stick_area`` the Gauss-point integral of the stick states,
+Scalars: ``P, Qx, Qy`` the resultants of the nodal tractions (Σ d_k λ_k); ``contact_area``
+the area inside r(θ), ``stick_area`` the dual weights of the stick nodes summed,
 ``slip_area`` the rest; ``a_x, a_y`` half the closed length of the lines through the
-centre; ``p_max`` the largest nodal value of the limited projected pressure; ``vm_max`` and its
+centre; ``p_max`` the largest nodal pressure; ``vm_max`` and its
 location over both planes (the plane samples, :func:`cases.result.vm_max_location`);
 ``wall_s`` the time since ``solve`` started.  Extra: ``approach`` (δ), ``shift_x/y``
 (g_t,o), ``P_reaction`` (the support reaction of the block: global equilibrium),
@@ -46,7 +43,7 @@ from cases.model import Body
 from cases.result import OPEN, STICK, Plane, StepResult, vm_max_location
 
 from .contact import Evaluation
-from .contact_zone import ContactZone, contact_zone
+from .contact_zone import ContactZone, closing_measure, contact_zone
 from .run import OutputState, Run
 from .stress_planes import AXIS_FIT_WINDOW, axis_peak, stress_planes
 from .vtu import fields_mesh
@@ -84,8 +81,9 @@ def step_output(run: Run, out: OutputState, *, t0: float, vtu: bool = True) -> S
     ev = out.sol.ev
     ua, ub = body_displacements(run, ev)
     tractions = recover_tractions(run, ev)
-    zone = contact_zone(run.sampling.layout, run.sampling.mapped, out.probe_ev,
-                        run.probes.inside, run.gap_tol)
+    active = (run.sampling.Nsub @ (ev.pn > 0.0).astype(float))
+    zone = contact_zone(run.sampling.layout, run.sampling.mapped, closing_measure(active),
+                        out.probe_ev.state, run.probes.inside)
     surface = surface_fields(run, out, zone, tractions, probe_gap(run, ua, ub))
     tables = line_tables(run, out, zone, tractions)
     u_body, mat = (ua, case.a) if case.stress.body == "a" else (ub, case.b)
@@ -101,9 +99,9 @@ def step_output(run: Run, out: OutputState, *, t0: float, vtu: bool = True) -> S
 
 
 def body_displacements(run: Run, ev: Evaluation) -> tuple[np.ndarray, np.ndarray]:
-    """Full FE displacements of bodies a and b (block frames) under the Gauss-point
-    tractions of ``ev``."""
-    w = run.quad.w
+    """Full FE displacements of bodies a and b (block frames) under the nodal tractions
+    of ``ev`` (forces ``Gᵀ W λ``, :mod:`fem_reference.nodal`)."""
+    w = run.nodes.w
     wt = np.concatenate([w * ev.t[:, 0], w * ev.t[:, 1], w * ev.pn])
     return run.model.body_displacements(run.G_all.T @ wt)
 
@@ -120,13 +118,11 @@ def probe_gap(run: Run, ua: np.ndarray, ub: np.ndarray) -> np.ndarray:
 
 
 def recover_tractions(run: Run, ev: Evaluation) -> Tractions:
-    """Limited projections of the Gauss-point tractions of ``ev`` (p_n on P2, p_t on P1)."""
-    rec, sampling = run.recovery, run.sampling
-    pn_nodes, pn_probe = rec.p2(ev.pn)
-    _, tx_probe = rec.p1(ev.t[:, 0])
-    _, ty_probe = rec.p1(ev.t[:, 1])
-    return Tractions(pn_nodes=pn_nodes, pn=pn_probe, px=sampling.sx * tx_probe,
-                     py=sampling.sy * ty_probe)
+    """The nodal tractions of ``ev`` and their values at the probes (linear on the
+    facets' sub-triangles, :meth:`fem_reference.surface.ContactSurface.sub_interpolation`)."""
+    Nsub, sampling = run.sampling.Nsub, run.sampling
+    return Tractions(pn_nodes=ev.pn, pn=Nsub @ ev.pn, px=sampling.sx * (Nsub @ ev.t[:, 0]),
+                     py=sampling.sy * (Nsub @ ev.t[:, 1]))
 
 
 def surface_fields(run: Run, out: OutputState, zone: ContactZone, tractions: Tractions,
@@ -135,7 +131,8 @@ def surface_fields(run: Run, out: OutputState, zone: ContactZone, tractions: Tra
     sampling = run.sampling
     grid = run.model.case.grid
     ng = sampling.layout.ngrid
-    contact = zone.state != OPEN
+    state = zone.state
+    contact = state != OPEN
     slip = np.where(contact[:, None], out.slip, 0.0)  # the slip of contact points only
     pn = np.where(contact, np.maximum(tractions.pn, 0.0), 0.0)
     px = np.where(contact, tractions.px, 0.0)
@@ -144,7 +141,7 @@ def surface_fields(run: Run, out: OutputState, zone: ContactZone, tractions: Tra
     fields = {
         "p_n": pn, "p_x": px, "p_y": py, "gap": gap,
         "slip_x": sampling.sx * slip[:, 0], "slip_y": sampling.sy * slip[:, 1],
-        "state": zone.state, "wear_a": pr.wear_a, "wear_b": pr.wear_b,
+        "state": state, "wear_a": pr.wear_a, "wear_b": pr.wear_b,
     }
     return {name: v[:ng].reshape(grid.nx, grid.ny) for name, v in fields.items()}
 
@@ -166,12 +163,12 @@ def line_tables(run: Run, out: OutputState, zone: ContactZone, tractions: Tracti
 
 def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tractions,
                  planes: dict[str, Plane], axis: Table) -> dict[str, float]:
-    """The summary scalars of a step from its Gauss-point tractions, contact zone and
+    """The summary scalars of a step from its nodal tractions, contact zone and
     stresses (symmetry factors applied)."""
     m = run.model
     st = m.case.stress
-    sym, quad, ev = m.sym, run.quad, out.sol.ev
-    w = quad.w
+    sym, nodes, ev = m.sym, run.nodes, out.sol.ev
+    w = nodes.w
     stick = ev.state == STICK
     vm, vm_x, vm_y, vm_z = vm_max_location(planes, st.x0, st.y0)
     vm_axis, z_axis = axis_peak(axis["z"], axis["vm"],
@@ -181,7 +178,7 @@ def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tract
         Q = [0.0, 0.0]
     elif m.shape == "half":
         Q = [sym.factor * Q[0], 0.0]
-    wear_q = quad.wear_a + quad.wear_b
+    wear_q = nodes.wear_a + nodes.wear_b
     wear_probe = run.probes.wear_a + run.probes.wear_b
     return {
         "step": out.step, "s": out.s, "cycle": float("nan"),

@@ -1,9 +1,9 @@
 """One FEM run of a case: its set-up on a model, its current state, its output states.
 
-:func:`start_run` builds the contact points (the surface quadrature points, where the
-penalty tractions are integrated, and the output probes of :mod:`fem_reference.sampling`),
-the traction recovery and the stress sampler, and starts from the displacements under
-the Hertz pressure (:func:`hertz_start`).  The load path (:mod:`fem_reference.loading`)
+:func:`start_run` builds the contact points (one per surface node of the contact zone,
+with the dual weights of :mod:`fem_reference.nodal`, and the output probes of
+:mod:`fem_reference.sampling`) and the stress sampler, and starts from the displacements
+under the Hertz pressure (:func:`hertz_start`).  The load path (:mod:`fem_reference.loading`)
 advances the state and hands over an :class:`OutputState` per output step; the output
 recovery (:mod:`fem_reference.output`) reads both.
 """
@@ -17,9 +17,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from .contact import Evaluation, Points, Solution
-from .contact_zone import gap_tolerance
 from .model import FemModel
-from .recovery import TractionRecovery, traction_recovery
+from .nodal import coefficients, dual_weights, modified_basis
 from .sampling import ProbeSampling, probe_layout, probe_sampling
 from .stresses import PointLocator
 
@@ -27,16 +26,15 @@ from .stresses import PointLocator
 @dataclass
 class Run:
     """The set-up of a run and its current converged state (``u``, ``delta``, ``D`` and
-    the histories ``t_old, gt_old, wear_a, wear_b`` of ``quad`` and ``probes``)."""
+    the histories ``lam_n, t_old, gt_old, wear_a, wear_b`` of ``nodes`` and ``probes``)."""
 
     model: FemModel
-    quad: Points  # surface quadrature points
+    nodes: Points  # contact points: the surface nodes (modified coefficients, dual weights)
     probes: Points  # output probes (weights 0)
-    G_all: sp.csr_matrix  # all surface DOFs -> displacements at the quadrature points
+    G_all: sp.csr_matrix  # all surface DOFs -> modified coefficients at the nodes
+    Nmod: sp.csr_matrix  # modified coefficients -> field values at the probes (N Bᵀ)
     sampling: ProbeSampling
-    recovery: TractionRecovery
     locator: PointLocator  # finds the elements of stress sample points
-    gap_tol: float  # ε: gaps below it count as closed (fem_reference.contact_zone)
     u: np.ndarray  # relative surface displacements (condensed DOFs)
     delta: float  # rigid approach δ
     D: np.ndarray  # rigid tangential displacement g_t,o
@@ -60,23 +58,26 @@ def start_run(model: FemModel) -> Run:
     """Contact points, probes, recovery and the Hertz start of a run on ``model``."""
     case, surf = model.case, model.surface
     R = case.R
-    G_all = surf.operator(surf.Nq)  # all surface DOFs (forces on the blocks)
-    quad = Points(G=G_all[:, model.cidx].tocsr(), w=surf.quad_w, xy=surf.quad_xy,
-                  h=(surf.quad_xy**2).sum(axis=1) / (2 * R),
-                  inside=np.ones(surf.quad_w.size, bool))
+    B, Binv = modified_basis(surf)
+    G_all = surf.operator(Binv.T.tocsr())  # all surface DOFs (forces on the blocks)
+    nodes = Points(G=G_all[:, model.cidx].tocsr(), w=dual_weights(surf, B), xy=surf.xy,
+                   h=coefficients(Binv, (surf.xy**2).sum(axis=1) / (2 * R)),
+                   inside=np.ones(surf.nnodes, bool))
     layout = probe_layout(case.grid, model.shape, surf.r_c, model.h)
     sampling = probe_sampling(model, layout)
     xy = layout.xy
     probes = Points(G=surf.operator(sampling.N)[:, model.cidx].tocsr(), w=np.zeros(xy.shape[0]),
                     xy=xy, h=(xy**2).sum(axis=1) / (2 * R), inside=sampling.found)
-    u, delta = hertz_start(model, quad)
-    return Run(model=model, quad=quad, probes=probes, G_all=G_all, sampling=sampling,
-               recovery=traction_recovery(surf, sampling), locator=PointLocator(model.space),
-               gap_tol=gap_tolerance(model.a_ref, R), u=u, delta=delta, D=np.zeros(2))
+    u, delta = hertz_start(model, nodes)
+    return Run(model=model, nodes=nodes, probes=probes, G_all=G_all,
+               Nmod=(sampling.N @ B.T).tocsr(), sampling=sampling,
+               locator=PointLocator(model.space),
+               u=u, delta=delta, D=np.zeros(2))
 
 
-def hertz_start(model: FemModel, quad: Points) -> tuple[np.ndarray, float]:
-    """Initial guess (u, δ): the displacements under the Hertz pressure of the case.
+def hertz_start(model: FemModel, pts: Points, frac: float = 1.0) -> tuple[np.ndarray, float]:
+    """Initial guess (u, δ): the displacements under the Hertz pressure of the case at
+    the fraction ``frac`` of its normal load (or approach).
 
     Starting the semi-smooth Newton iteration from an almost right active set saves
     most of the iterations a start from u = 0 (every point of h < δ penetrating)
@@ -84,16 +85,17 @@ def hertz_start(model: FemModel, quad: Points) -> tuple[np.ndarray, float]:
     half-space); under approach control the prescribed approach.
     """
     case = model.case
-    a = model.a_ref
+    # Hertz: a ∝ P^(1/3) under load control, a ∝ δ^(1/2) under approach control
+    a = model.a_ref * (frac ** (1.0 / 3.0) if case.load.P is not None else math.sqrt(frac))
     p0 = 2.0 * case.E_star * a / (math.pi * case.R)
-    r2 = (quad.xy**2).sum(axis=1)
+    r2 = (pts.xy**2).sum(axis=1)
     pH = p0 * np.sqrt(np.maximum(1.0 - r2 / a**2, 0.0))
-    w = quad.w
+    w = pts.w
     n = w.size
-    f = quad.G.T @ np.concatenate([np.zeros(2 * n), w * pH])
+    f = pts.G.T @ np.concatenate([np.zeros(2 * n), w * pH])
     u = model.Crel @ f
     if case.load.P is None:
-        return u, float(case.load.approach)
-    uz = quad.displacement(u)[:, 2]
+        return u, float(case.load.approach) * frac
+    uz = pts.displacement(u)[:, 2]
     inner = r2 < (0.8 * a) ** 2
-    return u, float(np.mean(quad.h[inner] + uz[inner]))
+    return u, float(np.mean(pts.h[inner] + uz[inner]))

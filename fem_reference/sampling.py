@@ -96,8 +96,7 @@ class ProbeSampling:
     sy: np.ndarray
     found: np.ndarray  # probes inside the FE contact zone
     N: sp.csr_matrix  # P2 interpolation on the contact zone (n x surface nodes)
-    N1: sp.csr_matrix  # P1 interpolation (linear in a facet's vertex values)
-    patch_nodes: np.ndarray  # (n, 6) surface nodes of the probe's facet, -1 outside
+    Nsub: sp.csr_matrix  # nodal values: linear on the four sub-triangles of a facet
     Ntop: sp.csr_matrix  # P2 interpolation on the whole top surface of the block
 
 
@@ -107,11 +106,9 @@ def probe_sampling(model: FemModel, layout: ProbeLayout) -> ProbeSampling:
     surf = model.surface
     mapped, sx, sy = model.sym.map(layout.xy)
     N, found = surf.interpolation(mapped)
-    facet, _ = surf.locate(mapped)
-    patch_nodes = np.where(found[:, None], surf.facets[np.maximum(facet, 0)], -1)
     Ntop, found_top = model.top.interpolation(mapped)
     if not found_top.all():
         raise FemError("a grid point lies outside the block's top surface")
-    N1, _ = surf.interpolation(mapped, p1=True)
-    return ProbeSampling(layout=layout, mapped=mapped, sx=sx, sy=sy, found=found, N=N, N1=N1,
-                         patch_nodes=patch_nodes, Ntop=Ntop)
+    Nsub, _ = surf.sub_interpolation(mapped)
+    return ProbeSampling(layout=layout, mapped=mapped, sx=sx, sy=sy, found=found, N=N,
+                         Nsub=Nsub, Ntop=Ntop)

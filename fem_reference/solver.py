@@ -9,7 +9,7 @@ The run is assembled from one module per job:
   tangential loading; one output step ``step = 0``) and sliding-wear steps (output
   steps ``round(s / sliding_wear.step)``);
 - :mod:`fem_reference.output`: the output of one step — surface fields on the case grid
-  (limited L2 projections of the tractions, :mod:`fem_reference.recovery`; the contact
+  (the nodal tractions of :mod:`fem_reference.nodal`, interpolated; the contact
   region, :mod:`fem_reference.contact_zone`), the scalars, the stress planes and the
   load axis (:mod:`fem_reference.stress_planes`), the tables and the ``.vtu`` mesh.
 

@@ -5,8 +5,9 @@ the radius ``r_c`` of the load axis.  The traces of the P2 field on those facets
 triangles (3 vertex nodes and 3 edge nodes, order v0 v1 v2 e01 e12 e02).  Everything
 the contact solver needs is linear in the surface nodal values and is expressed by
 sparse interpolation matrices ``N`` (points x surface nodes): at the quadrature points
-(where the penalty tractions are integrated) and at arbitrary probe points (the case
-grid, lines through the centre).
+(the integrals of the surface functions, :mod:`fem_reference.nodal`) and at arbitrary
+probe points (the case grid, lines through the centre), P2 or linear on the four
+sub-triangles of a facet.
 """
 
 from __future__ import annotations
@@ -27,6 +28,26 @@ def p2_triangle_values(lam: np.ndarray) -> np.ndarray:
     vert = lam * (2.0 * lam - 1.0)
     edge = 4.0 * lam[..., TRI_EDGES[:, 0]] * lam[..., TRI_EDGES[:, 1]]
     return np.concatenate([vert, edge], axis=-1)
+
+
+def sub_triangle_values(lam: np.ndarray) -> np.ndarray:
+    """Weights (..., 6) of the piecewise-linear interpolation of the six P2 nodes on the
+    four sub-triangles of a triangle (v0 e01 e02, v1 e12 e01, v2 e02 e12, e01 e12 e02),
+    at barycentric coordinates (..., 3)."""
+    l0, l1, l2 = lam[..., 0], lam[..., 1], lam[..., 2]
+    out = np.zeros(lam.shape[:-1] + (6,))
+    corner = np.argmax(lam, axis=-1)
+    big = np.take_along_axis(lam, corner[..., None], -1)[..., 0] >= 0.5
+    centre = ~big
+    out[..., 3] = np.where(centre, 1.0 - 2.0 * l2, 0.0)
+    out[..., 4] = np.where(centre, 1.0 - 2.0 * l0, 0.0)
+    out[..., 5] = np.where(centre, 1.0 - 2.0 * l1, 0.0)
+    for k, (ea, eb, la, lb) in enumerate(((3, 5, l1, l2), (4, 3, l2, l0), (5, 4, l0, l1))):
+        sel = big & (corner == k)
+        out[..., k] = np.where(sel, 2.0 * lam[..., k] - 1.0, out[..., k])
+        out[..., ea] = np.where(sel, 2.0 * la, out[..., ea])
+        out[..., eb] = np.where(sel, 2.0 * lb, out[..., eb])
+    return out
 
 
 class ContactSurface:
@@ -109,20 +130,33 @@ class ContactSurface:
         bary = lam[np.arange(n), first]
         return facet, bary
 
-    def interpolation(self, xy: np.ndarray, *, p1: bool = False
-                      ) -> tuple[sp.csr_matrix, np.ndarray]:
-        """Interpolation matrix (n x nnodes) at points ``xy`` and the mask of points found.
+    def interpolation(self, xy: np.ndarray) -> tuple[sp.csr_matrix, np.ndarray]:
+        """P2 interpolation matrix (n x nnodes) at points ``xy`` and the mask of points
+        found.  Rows of points outside the contact zone are empty."""
+        facet, bary = self.locate(xy)
+        found = facet >= 0
+        idx = np.nonzero(found)[0]
+        phi = p2_triangle_values(bary[idx])
+        rows = np.repeat(idx, phi.shape[1])
+        cols = self.facets[facet[idx], :phi.shape[1]].ravel()
+        N = sp.csr_matrix((phi.ravel(), (rows, cols)), shape=(facet.size, self.nnodes))
+        return N, found
 
-        P2 on each facet, or with ``p1`` linear in the facet's vertex values.  Rows of
-        points outside the contact zone are empty.
+    def sub_interpolation(self, xy: np.ndarray) -> tuple[sp.csr_matrix, np.ndarray]:
+        """Interpolation matrix (n x nnodes) linear on the four sub-triangles of each facet
+        (corners and edge nodes: ``sub_triangle_values``), and the mask of points found.
+
+        A monotone reconstruction of nodal values: it never leaves their range, so a
+        nodal field that drops to zero within a facet does not ring.
         """
         facet, bary = self.locate(xy)
         found = facet >= 0
         idx = np.nonzero(found)[0]
-        phi = bary[idx] if p1 else p2_triangle_values(bary[idx])
-        rows = np.repeat(idx, phi.shape[1])
-        cols = self.facets[facet[idx], :phi.shape[1]].ravel()
+        phi = sub_triangle_values(bary[idx])
+        rows = np.repeat(idx, 6)
+        cols = self.facets[facet[idx]].ravel()
         N = sp.csr_matrix((phi.ravel(), (rows, cols)), shape=(facet.size, self.nnodes))
+        N.eliminate_zeros()
         return N, found
 
     def operator(self, N: sp.csr_matrix) -> sp.csr_matrix:
@@ -135,47 +169,3 @@ class ContactSurface:
             )
             blocks.append(N @ P)
         return sp.vstack(blocks, format="csr")
-
-    def node_ranges(self, values: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Range (min, max) per surface node of quadrature-point ``values`` over the facets
-        that contain the node (its patch)."""
-        v = np.asarray(values, dtype=float).reshape(self.facets.shape[0], -1)
-        fmin, fmax = v.min(axis=1), v.max(axis=1)
-        lo = np.full(self.nnodes, np.inf)
-        hi = np.full(self.nnodes, -np.inf)
-        for k in range(self.facets.shape[1]):
-            np.minimum.at(lo, self.facets[:, k], fmin)
-            np.maximum.at(hi, self.facets[:, k], fmax)
-        return lo, hi
-
-    def p1_projection(self) -> tuple[sp.csr_matrix, sp.csr_matrix, sp.csr_matrix]:
-        """(F, M, E) of the L2 projection of quadrature-point values on continuous P1.
-
-        ``F`` (nnodes x nquad): values -> ``∫ λ_i v`` at the vertex nodes (zero rows at
-        the edge nodes); ``M`` (nnodes x nnodes): the P1 mass matrix ``∫ λ_i λ_j`` with
-        unit diagonal at the edge nodes; ``E``: vertex values -> edge-node values (the
-        mean of the edge's two vertices).  Nodal values: ``E'`` applied to ``M⁻¹ F v``.
-        """
-        nf, nq = self.facets.shape[0], self.quad_lam.shape[0]
-        vert = self.facets[:, :3]
-        rows = np.repeat(np.arange(nf * nq), 3)
-        cols = np.repeat(vert, nq, axis=0).ravel()  # the facet's vertex nodes per point
-        Nv = sp.csr_matrix((np.tile(self.quad_lam, (nf, 1)).ravel(), (rows, cols)),
-                           shape=(nf * nq, self.nnodes))  # P1 values at the points
-        F = (Nv.T @ sp.diags(self.quad_w)).tocsr()
-        M = (F @ Nv).tocsr()
-        is_vert = np.zeros(self.nnodes, dtype=bool)
-        is_vert[vert.ravel()] = True
-        M = (M + sp.diags((~is_vert).astype(float))).tocsr()
-        ends = vert[:, TRI_EDGES]  # (nf, 3, 2)
-        mid = self.facets[:, 3:].ravel()
-        E = sp.csr_matrix((np.full(2 * mid.size, 0.5), (np.repeat(mid, 2), ends.reshape(-1))),
-                          shape=(self.nnodes, self.nnodes))
-        count = np.bincount(mid, minlength=self.nnodes).astype(float)
-        E = sp.diags(np.where(count > 0, 1.0 / np.maximum(count, 1.0), 0.0)) @ E
-        E = (E + sp.diags(is_vert.astype(float))).tocsr()
-        return F, M, E
-
-    def mass(self) -> sp.csr_matrix:
-        """Surface mass matrix ``∫ φ_i φ_j dA`` over the contact zone (exact for P2)."""
-        return (self.Nq.T @ sp.diags(self.quad_w) @ self.Nq).tocsr()

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 from skfem import Basis, CellBasis, ElementTetP2, ElementVector, MeshTet, asm
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 
@@ -144,31 +142,6 @@ def test_contact_surface_quadrature_and_interpolation():
     assert np.allclose(N @ f, ref, atol=1e-12)
     _, found = surf.interpolation(np.array([[2.0, 0.0]]))
     assert not found.any()
-    assert sp.issparse(surf.mass())
-
-
-def test_p1_projection_of_tractions():
-    """The P1 L2 projection used for the tangential tractions reproduces a linear field
-    given at the quadrature points exactly (vertices, edge nodes and probes) and keeps
-    the integral of any field."""
-    mesh = block_mesh(MeshSpec("quarter", 4.0, 4.0, 0.25, 1.5, 1.0, h_max=1.0), 1.0)
-    space = P2Space(mesh)
-    surf = ContactSurface(space, 1.5, (2,), np.zeros(space.ndofs, bool))
-    F, M, E = surf.p1_projection()
-    solve = spla.splu(M.tocsc()).solve
-    lin = 2.0 - 0.7 * surf.quad_xy[:, 0] + 1.3 * surf.quad_xy[:, 1]
-    nodal = E @ solve(F @ lin)
-    assert np.allclose(nodal, 2.0 - 0.7 * surf.xy[:, 0] + 1.3 * surf.xy[:, 1], atol=1e-11)
-    pts = np.random.default_rng(3).uniform(0.0, 0.9, size=(40, 2))
-    N1, found = surf.interpolation(pts, p1=True)
-    assert found.all()
-    assert np.allclose(N1 @ solve(F @ lin), 2.0 - 0.7 * pts[:, 0] + 1.3 * pts[:, 1],
-                       atol=1e-11)
-    # the integral of the projection is the quadrature of the values (1 is in P1)
-    rough = np.sign(np.sin(7 * surf.quad_xy[:, 0])) + surf.quad_xy[:, 1] ** 3
-    vert = solve(F @ rough)
-    assert np.isclose(np.asarray(F.sum(axis=1)).ravel() @ vert, surf.quad_w @ rough,
-                      rtol=1e-12)
 
 
 def test_mesh_cache_and_determinism(tmp_path, monkeypatch):

@@ -149,3 +149,36 @@ def test_sweep_reuses_the_model_core(monkeypatch):
     a, b = reused.steps[0].scalars, fresh.steps[0].scalars
     for key in ("P", "Qx", "p_max", "vm_max", "a_x", "approach", "contact_area"):
         assert b[key] == pytest.approx(a[key], rel=1e-9, abs=1e-15)
+
+
+def _mindlin_errors(case, res):
+    """(L2, max) errors of the FE p_x on the case grid against Mindlin's traction, in
+    the metrics' normalisation (reports.tolerances): L2 over the contact, max outside
+    the band of one cell inside the contact edge, both over max |q|."""
+    a0, p0 = case.hertz_scales
+    mu, P, Q = case.friction.mu1, case.load.P, case.load.Qx
+    c = a0 * (1 - Q / (mu * P)) ** (1 / 3)
+    g = case.grid
+    X, Y = np.meshgrid(g.x, g.y, indexing="ij")
+    r = np.hypot(X, Y)
+    q = mu * p0 * (np.sqrt(np.clip(1 - (r / a0) ** 2, 0, None))
+                   - (c / a0) * np.sqrt(np.clip(1 - (r / c) ** 2, 0, None)))
+    e = res.steps[0].surface["p_x"] - q
+    inside = r < a0
+    band = r < a0 - max(g.dx, g.dy)
+    return (float(np.linalg.norm(e[inside]) / np.linalg.norm(q[inside])),
+            float(np.abs(e[band]).max() / np.abs(q).max()))
+
+
+def test_cattaneo_mindlin_traction_converges_on_three_meshes():
+    """Node-wise augmented contact: the tangential traction of Q/μP = 0.5 converges to
+    Mindlin's on h = a0/4, a0/6, a0/8 (half block 10 a0) in L2 and in the max norm,
+    with observed orders from the three meshes.  L2: order above 0.6 (the √(c − r)
+    kink at the stick radius allows about 1).  Max norm: it decreases on every mesh, but
+    its pairwise order depends on where the kink falls between the nodes (measured
+    0.245 -> 0.193 -> 0.180, orders 0.58 and 0.25), so only the decrease is asserted."""
+    hs = (0.25, 1 / 6, 0.125)
+    errs = [_mindlin_errors(*cattaneo(h)) for h in hs]
+    l2, mx = [e[0] for e in errs], [e[1] for e in errs]
+    print(assert_converges(hs, l2, min_order=0.6, what="p_x L2 error"))
+    print(assert_converges(hs, mx, min_order=0.0, what="p_x max error"))

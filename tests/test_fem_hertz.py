@@ -119,13 +119,22 @@ def test_fields_are_consistent():
     assert np.all(s["wear_a"] == 0) and np.all(s["slip_x"] == 0)
     closed = s["state"] != 0
     assert np.all(s["p_n"][~closed] == 0) and np.all(s["p_n"] >= 0)
-    # the gap vanishes (to the penalty penetration) inside, and is positive outside
-    assert np.abs(s["gap"][closed]).max() < 2e-2 * d0
-    assert s["gap"][~closed].min() > -1e-3 * d0
-    # outside the contact the gap is the Hertz gap of the half-space (finite block: ~5 %)
     g = case.grid
     X, Y = np.meshgrid(g.x, g.y, indexing="ij")
     r = np.hypot(X, Y)
+    h = case.fem.h * a0
+    # the gap vanishes inside (exactly: the augmented Lagrangian leaves no penetration);
+    # the closed cells reach half a node spacing past the last node in contact
+    # (fem_reference.contact_zone), where the gap stays below the Hertz gap one element
+    # outside the contact
+    inner = closed & (r < a0 - h)
+    assert inner.sum() > 10 and np.abs(s["gap"][inner]).max() < 1e-9 * d0
+    rr = 1 + h / a0
+    edge_bound = d0 / math.pi * ((2 - rr**2) * np.arcsin(1 / rr) + np.sqrt(rr**2 - 1)) \
+        + rr**2 * a0**2 / (2 * case.R) - d0
+    assert np.abs(s["gap"][closed]).max() < edge_bound
+    assert s["gap"][~closed].min() > -1e-3 * d0
+    # outside the contact the gap is the Hertz gap of the half-space (finite block: ~5 %)
     far = (r > 1.5 * a0) & (r < 3 * a0)
     rr = r[far] / a0
     hertz_gap = d0 / math.pi * ((2 - rr**2) * np.arcsin(1 / rr) + np.sqrt(rr**2 - 1)) \
@@ -142,66 +151,30 @@ def test_fields_are_consistent():
     assert xz.fields["szz"][i0, 0] == pytest.approx(-s["p_n"][i0, i0], rel=0.05)
 
 
-def test_penalty_sensitivity():
-    """Multiplying the penalty by 10 changes the results by less than 0.5 %."""
+def test_penalty_independence():
+    """The augmented Lagrangian makes the result independent of the penalty: multiplying
+    it by 10 or dividing it by 10 changes every result, the contact area and the
+    pressure field included, by less than 1e-9 (measured at most 2.3e-11; the plain
+    penalty method moved the contact area by -3.9 % here)."""
     case, res = run(0.25, 10.0)
-    _, res10 = run(0.25, 10.0, 1000.0)
-    a, b = res.steps[0].scalars, res10.steps[0].scalars
-    for key in ("p_max", "vm_max", "vm_axis_max", "approach", "P_reaction", "a_x", "a_y"):
-        assert abs(b[key] / a[key] - 1) < 0.005, (key, a[key], b[key])
-    assert abs(b["vm_axis_z"] - a["vm_axis_z"]) < 0.005 * a["vm_axis_z"]
-    print("\npenalty x10: " + ", ".join(
-        f"{k} {100 * (b[k] / a[k] - 1):+.3f}%"
-        for k in ("p_max", "vm_max", "vm_axis_max", "approach", "a_x", "contact_area")))
+    for factor in (10.0, 0.1):
+        _, other = run(0.25, 10.0, 100.0 * factor)
+        a, b = res.steps[0].scalars, other.steps[0].scalars
+        for key in ("p_max", "vm_max", "vm_axis_max", "vm_axis_z", "approach", "P_reaction",
+                    "a_x", "a_y", "contact_area"):
+            assert abs(b[key] / a[key] - 1) < 1e-9, (factor, key, a[key], b[key])
+        pa, pb = res.steps[0].surface["p_n"], other.steps[0].surface["p_n"]
+        assert np.abs(pb - pa).max() < 1e-9 * a["p_max"]
 
 
-def test_contact_area_penalty_sensitivity_is_a_discretisation_error():
-    """The contact area (the region where the gap closes) is the one result that moves
-    by more than 0.5 % when the penalty is multiplied by 10 on the fast mesh: at the edge
-    the P2 surface cannot follow a stiff penalty at all Gauss points of the facets the
-    edge cuts (the FE gap there is positive by ~1e-3 δ0 at h = a0/4, above the
-    penetration), so a stiffer penalty opens a band inside the edge.  A discretisation
-    error: measured (block 10 a0) -3.9 % at h = a0/4, -1.8 % at a0/8, -0.5 % at a0/16,
-    and the area approaches π a0² from below (-7.4, -3.6, -1.4 % at penalty 100).  The
-    support of the projected pressure is penalty-robust but overestimates the area by as
-    much (+10.8, +4.0, +1.9 %); p_max (hence a = √(3P/2πp_max)) shows a = a0 within
-    0.01 % at a0/8.  Asserted: the sensitivity and the error shrink under refinement."""
-    _, p_100 = run(0.25, 10.0)
-    _, p_1000 = run(0.25, 10.0, 1000.0)
-    case, f_100 = run(0.125, 10.0)
-    _, f_1000 = run(0.125, 10.0, 1000.0)
+def test_contact_area_converges():
+    """The contact area (inside the boundary r(θ) where the gap closes) tends to π a0²
+    under refinement, at an observed order of at least 1 over h = a0/4 -> a0/8."""
+    case, coarse = run(0.25, 10.0)
+    _, fine = run(0.125, 10.0)
     a0 = case.hertz_a0
-    area = {key: r.steps[0].scalars["contact_area"] / (math.pi * a0**2)
-            for key, r in (("c100", p_100), ("c1000", p_1000), ("f100", f_100),
-                           ("f1000", f_1000))}
-    d_coarse = area["c1000"] / area["c100"] - 1
-    d_fine = area["f1000"] / area["f100"] - 1
-    # |d_fine| < 0.6 |d_coarse|: order > log2(1/0.6) = 0.74 over the halving (O(h): 0.5)
-    print(assert_converges((0.25, 0.125), [d_coarse, d_fine], min_order=math.log2(1 / 0.6),
-                           what="area change under penalty x10"))
-    # the area error shrinks, from below: c100 - 1 < f100 - 1 < 0
-    print(assert_converges((0.25, 0.125), [area["c100"] - 1, area["f100"] - 1],
-                           min_order=0.0, what="area/(pi a0^2) - 1"))
-    assert area["c100"] - 1 < 0 and area["f100"] - 1 < 0
-    print(f"\ncontact area x10 penalty: h=a0/4 {100 * d_coarse:+.2f}%, "
-          f"h=a0/8 {100 * d_fine:+.2f}%; "
-          f"area/(pi a0^2) {area['c100']:.4f} -> {area['f100']:.4f}")
-
-
-@pytest.mark.full
-def test_penalty_sensitivity_at_a0_over_16_including_the_area():
-    """Issue 4, scope 3: at h = a0/16 every result, the contact area included, changes by
-    less than 0.5 % when the penalty is multiplied by 10 (area measured -0.49 %; the
-    other results change by < 0.1 %).  About 2 min: the full tier."""
-    _, a_run = run(0.0625, 10.0)
-    _, b_run = run(0.0625, 10.0, 1000.0)
-    a, b = a_run.steps[0].scalars, b_run.steps[0].scalars
-    for key in ("p_max", "vm_max", "vm_axis_max", "approach", "P_reaction", "a_x", "a_y",
-                "contact_area"):
-        assert abs(b[key] / a[key] - 1) < 0.005, (key, a[key], b[key])
-    print("\npenalty x10 at a0/16: " + ", ".join(
-        f"{k} {100 * (b[k] / a[k] - 1):+.3f}%"
-        for k in ("p_max", "vm_max", "approach", "a_x", "contact_area")))
+    err = [r.steps[0].scalars["contact_area"] / (math.pi * a0**2) - 1 for r in (coarse, fine)]
+    print(assert_converges((0.25, 0.125), err, min_order=1.0, what="area/(pi a0^2) - 1"))
 
 
 def test_block_size_effect():

@@ -85,10 +85,17 @@ def test_wear_profile_is_axisymmetric_and_follows_the_pressure():
     g = case.grid
     i0, j0 = np.argmin(np.abs(g.x)), np.argmin(np.abs(g.y))
     assert w[i0, j0] == pytest.approx(w.max())  # deepest at the centre
-    # the worn gap: inside the contact the gap closes on the worn profile
+    # the worn gap: inside the contact the gap closes on the worn profile, exactly (the
+    # augmented Lagrangian) wherever the cell is more than two elements from the edge
+    # (the element size there is h0 a/a0); in the last elements the closed region ends
+    # half a node spacing past the last node in contact (fem_reference.contact_zone)
     closed = st.surface["state"] != 0
     d0 = hertz_solution(case).delta
-    assert np.abs(st.surface["gap"][closed]).max() < 0.02 * d0
+    a_x = st.scalars["a_x"]
+    X, Y = np.meshgrid(g.x, g.y, indexing="ij")
+    inner = closed & (np.hypot(X, Y) < a_x - 2 * case.fem.h * a_x)
+    assert inner.sum() > 20
+    assert np.abs(st.surface["gap"][inner]).max() < 1e-9 * d0
 
 
 def test_output_steps_are_handed_over_as_soon_as_computed(monkeypatch):
