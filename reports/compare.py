@@ -13,7 +13,12 @@ forms) of a traction that falls to zero inside the cell differ by a fraction of 
 traction itself, and a worn contact, whose pressure drops almost as a step at the edge
 (Argatov's limit is uniform pressure), makes that fraction O(1) at any grid size; the
 near-edge σ_VM follows the edge traction (its gradient ∝ jump/distance).  The L2 norms,
-the semi-widths and the contact area still measure the edge.
+the semi-widths and the contact area still measure the edge, except on the planes of a
+case that declares its surface σ_VM maximum not converged (``[not_converged] vm_max``, a
+log-singular edge, docs/formulation.md §2.6): there the plane L2 norms leave out the
+edge band as well, because the singular neighbourhood carries most of the difference
+and no grid settles it (worn pin, quick set-up, μ = 0.5, s = 160 mm: ic 41² against
+ic 161² 0.030 with the band, 0.015 without; the FEM 0.040 and 0.010).
 
 Fretting runs also carry per-cycle tables (``loops``: cycle, displacement, Qx, Qy;
 ``cycles``: cycle, energy, ...); at an output step whose ``cycle`` both solvers' tables
@@ -191,13 +196,16 @@ def _plane_edges(step: StepResult, name: str, s: np.ndarray, x0: float, y0: floa
 
 
 def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
-                  x0: float = 0.0, y0: float = 0.0) -> list[tuple[str, str, float]]:
+                  x0: float = 0.0, y0: float = 0.0, singular_edge: bool = False
+                  ) -> list[tuple[str, str, float]]:
     """Metric rows (quantity, metric, value) of step ``sa`` against reference ``sb``
-    (planes through (x0, y0))."""
+    (planes through (x0, y0)).  ``singular_edge``: the surface stress is log-singular at
+    the contact edge (a case that declares ``vm_max`` not converged), so the plane L2
+    norms leave out the edge band too (module doc)."""
     hx = max(_spacing(sa.x), _spacing(sb.x))
     hy = max(_spacing(sa.y), _spacing(sb.y))
     rows = _surface_rows(sa, sb, a0, p0)
-    plane_rows, hz = _plane_rows(sa, sb, p0, x0, y0, hx, hy)
+    plane_rows, hz = _plane_rows(sa, sb, p0, x0, y0, hx, hy, singular_edge)
     return rows + plane_rows + _scalar_rows(sa, sb, a0, p0, hx, hy, hz)
 
 
@@ -232,9 +240,10 @@ def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float
 
 
 def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
-                hx: float, hy: float) -> tuple[list[tuple[str, str, float]], float]:
+                hx: float, hy: float, singular_edge: bool = False
+                ) -> tuple[list[tuple[str, str, float]], float]:
     """Subsurface σ_VM planes; also the larger depth spacing hz of the planes (0 if
-    none)."""
+    none).  With ``singular_edge`` both norms leave out the edge band."""
     rows, hz = [], 0.0
     for q, name in tol.PLANE_FIELDS.items():
         pa_, pb_ = sa.planes.get(name), sb.planes.get(name)
@@ -248,7 +257,8 @@ def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
         fb = sample((pb_.s, pb_.z), pb_.fields["vm"], (ss, zs))
         edges = np.concatenate([_plane_edges(st, name, ss, x0, y0) for st in (sa, sb)])
         width = hx if name == "xz" else hy
-        err = field_errors(fa, fb, None, p0, max_mask=off_edges(ss, zs, edges, width))
+        off = off_edges(ss, zs, edges, width)
+        err = field_errors(fa, fb, off if singular_edge else None, p0, max_mask=off)
         if err is not None:
             rows += [(q, m, err[m]) for m in tol.METRICS[q]]
     return rows, hz
@@ -310,7 +320,8 @@ def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
         for n in sorted(set(steps_a) & set(steps_b)):
             sa, sb = steps_a[n], steps_b[n]
             rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=case.stress.x0,
-                                 y0=case.stress.y0)
+                                 y0=case.stress.y0,
+                                 singular_edge="vm_max" in case.not_converged)
             cycle = _scalar(sb, "cycle")
             if math.isfinite(cycle):
                 rows += compare_tables(results[sa_name].tables, results[sb_name].tables,

@@ -36,7 +36,8 @@ Error budgets (at the resolutions of the bundled cases, quick grids included):
   are good to one cell, the stick-zone radius to 1.5 cells (it also depends on the slip
   threshold), the σ_VM maximum (a broad maximum sampled on a lattice) to 1.5 cells or
   0.3 a0 (one quick-grid cell is 0.26 a0).
-- ``fem`` (P2 elements, h ≈ a0/8 in the contact, finite block 20 a0, penalty 100 E*/h;
+- ``fem`` (P2 elements, h ≈ a0/8 in the contact, finite block 20 a0, node-wise
+  augmented-Lagrangian contact;
   p_max within 0.4 % and σ_VM,max within 0.3 % on such meshes, ``docs/fem-notes.md``):
   the grid budgets, except 5 % for wear quantities (penalty contact and the block's
   compliance act on the wear increments).

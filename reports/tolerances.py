@@ -30,7 +30,9 @@ solver's contact boundary (on the planes: within one cell of the boundary's surf
 points), where a cell average and a point value of a traction that drops to zero inside
 the cell differ by a fraction of the traction itself — O(1) for the step-like pressure
 edge of a worn contact at any grid size (:mod:`reports.compare`); the L2 norms, the
-semi-widths and the contact area still measure the edge;
+semi-widths and the contact area still measure the edge (except the plane L2 norms of a
+case that declares ``vm_max`` not converged, a log-singular edge: they leave out the
+band too);
 ``rel`` = |A − B| / |B|; for ``loop_q`` ``max`` = max over the cycle's loop points of
 |Q_A − Q_B| (the tangential load vector on body a) / μP, μ the friction coefficient along
 the path direction and P the case's Hertz load (:func:`reports.compare.friction_scale`),

@@ -148,3 +148,30 @@ def test_worn_pin_surface_maximum_grows_and_its_companion_converges(pin_grids):
         assert min(np.diff(top) / top[:-1]) > 0.05
         assert max(abs(v / below[-1] - 1.0) for v in below[:-1]) < 0.02
         assert all(b < t for b, t in zip(below, top, strict=True))
+
+
+def test_a_singular_edge_leaves_the_band_out_of_the_plane_l2():
+    """Two steps that differ only at the surface point of the contact edge (where a
+    log-singular stress has no converged value) and at one interior point: the plane L2
+    counts the edge point unless the case declares the singular edge; the interior one
+    always."""
+    from reports.compare import compare_steps
+
+    case = load_case("pin_on_disk", quick=True)[1]
+    a0, p0 = case.hertz_scales
+    sa, sb = fakes.hertz_step(case, 1.0, 0), fakes.hertz_step(case, 1.0, 0)
+    plane = sa.planes["xz"]
+    p_line = sa.surface["p_n"][:, np.argmin(np.abs(sa.y))]
+    edge = int(np.flatnonzero(p_line > 0)[-1])  # the last cell in contact along x
+    bumped = plane.fields["vm"].copy()
+    bumped[edge, 0] += 5.0 * p0
+    sa.planes["xz"] = type(plane)(s=plane.s, z=plane.z, fields={**plane.fields, "vm": bumped})
+
+    def l2(**kw):
+        return {(q, m): v for q, m, v in compare_steps(sa, sb, a0=a0, p0=p0, **kw)}[
+            ("vm_xz", "l2")]
+
+    assert l2() > 0.05
+    assert l2(singular_edge=True) == 0.0
+    bumped[edge // 2, 5] += 5.0 * p0  # an interior point still counts
+    assert l2(singular_edge=True) > 0.05
