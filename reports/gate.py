@@ -158,10 +158,9 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
                   "since the run (re-run to check the current version)", file=stream)
         for line in note_lines(case.name, case.convergence) + ungated_lines(case):
             print(line, file=stream)  # information, not failures
-    on = gated(table) if not table.empty else table.get("passed", pd.Series(dtype=bool))
-    n_ok = int((table["passed"].astype(str).str.lower().isin(["true", "1"]) & on).sum()) \
-        if not table.empty else 0
-    n_off = int((~on).sum()) if not table.empty else 0
+    on = gated(table)
+    n_ok = int((table["passed"].astype(str).str.lower().isin(["true", "1"]) & on).sum())
+    n_off = int((~on).sum())
     print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table) - n_off} metric(s) "
           "passed" + (f", {n_off} not gated (not converged)" if n_off else "")
           + f", {len(found)} problem(s)", file=stream)

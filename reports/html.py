@@ -372,7 +372,7 @@ def render(results: Scan, out: Path) -> str:
             continue
         sections.append(section)
         m = case.metrics
-        n_ok, n_on = _n_passed(m), int(gated(m).sum()) if not m.empty else 0
+        n_ok, n_on = _n_passed(m), int(gated(m).sum())
         bad = len(not_converged(case.summary))
         grid = len(gridstudy.unsettled(case.convergence))
         status = "ok" if n_ok == n_on and not bad else "bad"
@@ -392,7 +392,7 @@ def render(results: Scan, out: Path) -> str:
                 f"reported):</b><ul>{items}</ul></div>")
     found = problems(results)
     table = metrics_table(results)
-    n_on = int(gated(table).sum()) if not table.empty else 0
+    n_on = int(gated(table).sum())
     off = f", {len(table) - n_on} not converged and not gated" if n_on < len(table) else ""
     verdict = (f'<p class="ok" id="verdict">Gate: pass ({n_on} gated metrics{off})</p>'
                if not found else
