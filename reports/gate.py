@@ -17,7 +17,7 @@ import pandas as pd
 from .errors import RunFailed, UserError
 from .gridstudy import note_lines
 from .layout import METRICS
-from .readers import gated
+from .readers import gated, ungated
 from .results import CaseResults, Scan, not_converged, scan
 
 _SHOW = ["case", "param", "step", "pair", "quantity", "metric", "value", "tolerance",
@@ -70,22 +70,11 @@ def metric_problems(case: CaseResults) -> list[str]:
 
 
 def ungated_lines(case: CaseResults) -> list[str]:
-    """One ``NOT GATED …`` note per quantity of a case that is not converged (the metric
-    rows :func:`reports.readers.gated` leaves out), with its largest value and the
-    reason."""
-    m = case.metrics
-    if m.empty:
-        return []
-    off = m[~gated(m)]
-    lines = []
-    for (pair, quantity, metric), g in off.groupby(["pair", "quantity", "metric"],
-                                                  sort=False):
-        worst = g.loc[g["value"].astype(float).idxmax()]
-        lines.append(f"NOT GATED {case.name} {pair} {quantity} {metric} ({len(g)} row(s), "
-                     f"largest {_num(float(worst['value']))} at "
-                     f"{_where('', worst['param'], worst['step']).strip()}): not converged; "
-                     f"{worst['note']}")
-    return lines
+    """One ``NOT GATED …`` note per quantity of a case that is not converged
+    (:func:`reports.readers.ungated`), with its largest value and the reason."""
+    return [f"NOT GATED {case.name} {r.pair} {r.quantity} {r.metric} ({r.rows} row(s), "
+            f"largest {_num(float(r.value))} at {_where('', r.param, r.step).strip()}): "
+            f"not converged; {r.note}" for r in ungated(case.metrics).itertuples(index=False)]
 
 
 def case_problems(results: Scan) -> list[str]:

@@ -54,6 +54,7 @@ from cases.model import Case, CaseError
 
 from . import convergence, solvers
 from .plan import CasePlan, Limits, check_fits
+from .tolerances import NOT_CONVERGED, budget
 from .units import UnitOutcome
 from .write import jsonable
 
@@ -321,8 +322,6 @@ def flag_metrics(metrics: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
     its budget is settled to that budget and stays gated (its note says so), and so does
     one whose study lacks a value (a failed coarse run is no evidence about the fine
     one): the gate keeps every number it has no measured reason to drop."""
-    from .tolerances import NOT_CONVERGED, budget
-
     bad = {(str(r.solver), "" if pd.isna(r.param) else str(r.param), int(r.step),
             str(r.quantity)): r for r in unsettled(frame).itertuples(index=False)}
     if not bad or metrics.empty:

@@ -18,7 +18,7 @@ from cases.result import atomic_write_text
 
 from . import gridstudy, plots
 from .gate import metrics_table, problems
-from .readers import gated
+from .readers import gated, ungated
 from .results import CaseResults, Scan, not_converged, scan
 from .run_events import EVENTS_NOTE, events_view
 from .studies import convergence_frame, scales, study_frame
@@ -213,10 +213,9 @@ def _metrics(case: CaseResults) -> list[str]:
                 f'<p class="bad">Not converged, so not gated ({len(m) - n_on} rows): the '
                 "largest value of each, and why (declared in the case file with its "
                 "measurements, or from the grid study below with its three values).</p>")
-            off = _worst(m[~on].assign(tolerance=1.0)).drop(columns=["tolerance", "passed"])
-            notes = m[~on].groupby(["pair", "quantity", "metric"], sort=False)["note"].first()
-            off["why"] = [notes[(r.pair, r.quantity, r.metric)]
-                          for r in off.itertuples(index=False)]
+            off = ungated(m)[["pair", "quantity", "metric", "value", "rows", "param", "step",
+                              "note"]].rename(columns={"param": "worst at param",
+                                                       "note": "why"})
             parts.append(table_html(off, left=3, row_class=lambda _: "ng"))
         cols = ["param", "step", "pair", "quantity", "metric", "value", "tolerance", "passed",
                 "status", "tolerance_key"]
@@ -235,7 +234,7 @@ def _n_passed(m: pd.DataFrame) -> int:
 
 
 def _metric_row_class(row: pd.Series) -> str:
-    if str(row.get("status", GATED)) not in ("", GATED, "nan"):
+    if row.get("status", GATED) != GATED:
         return "ng"
     return "pass" if str(row["passed"]).lower() in ("true", "1") else "fail"
 

@@ -234,11 +234,24 @@ def read_metrics(path: Path) -> pd.DataFrame:
 
 
 def gated(metrics: pd.DataFrame) -> pd.Series:
-    """Which metric rows are gated (``status`` "gated"; not those of a quantity that is
-    not converged, :mod:`reports.tolerances`)."""
+    """Which metric rows are gated (``status`` "gated", as :func:`read_metrics` and the
+    comparisons write it; not those of a quantity that is not converged,
+    :mod:`reports.tolerances`)."""
     if "status" not in metrics.columns:
         return pd.Series(True, index=metrics.index)
-    return metrics["status"].fillna(GATED).replace("", GATED) == GATED
+    return metrics["status"] == GATED
+
+
+def ungated(metrics: pd.DataFrame) -> pd.DataFrame:
+    """Per (pair, quantity, metric) of the rows that are not gated: the row of the
+    largest value, with ``rows`` (how many there are) and its ``note`` (why)."""
+    off = metrics[~gated(metrics)]
+    if off.empty:
+        return off.assign(rows=pd.Series(dtype=int))
+    keys = ["pair", "quantity", "metric"]
+    worst = off.loc[off.groupby(keys, sort=False)["value"].idxmax()]
+    return worst.assign(rows=off.groupby(keys, sort=False)["value"].transform("size")
+                        .loc[worst.index])
 
 
 def read_table(path: Path) -> pd.DataFrame:
