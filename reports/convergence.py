@@ -2,7 +2,7 @@
 
 Three solutions f1 (finest), f2, f3 (coarsest) on grids of representative cell sizes
 h1 < h2 < h3, refinement ratios r21 = h2/h1 and r32 = h3/h2 (Roache 1998; Celik et al.,
-J. Fluids Eng. 130 (2008) 078001):
+J. Fluids Eng. 130 (2008) 078001; docs/formulation.md §4.1, (G1) and (G2)):
 
 - ε21 = f2 − f1, ε32 = f3 − f2, s = sign(ε32/ε21) (s < 0: oscillatory convergence);
 - observed order p solves p = |ln|ε32/ε21| + q(p)| / ln r21 with

@@ -19,9 +19,10 @@ from .gridstudy import note_lines
 from .layout import METRICS
 from .readers import gated, ungated
 from .results import CaseResults, Scan, not_converged, scan
+from .uncertainty import UNCERTAINTY
 
 _SHOW = ["case", "param", "step", "pair", "quantity", "metric", "value", "tolerance",
-         "passed", "status", "tolerance_key"]
+         "passed", "status", "tolerance_key", "tolerance_kind", "budget", "uncertainty"]
 
 
 def metrics_table(results: Scan) -> pd.DataFrame:
@@ -60,8 +61,12 @@ def metric_problems(case: CaseResults) -> list[str]:
                 why = f"= {_num(value)} against tolerance {tol} (not a finite number)"
             else:
                 why = f"= {_num(value)} > tolerance {_num(tol)}"
-            lines.append(f"FAIL {what} {why}"
-                         + (f" (tolerance key {key})" if isinstance(key, str) and key else ""))
+            if getattr(r, "tolerance_kind", "") == UNCERTAINTY:
+                why += (f" (the combined uncertainty of the grid studies; budget "
+                        f"{_num(float(r.budget))}, tolerance key {key})")
+            elif isinstance(key, str) and key:
+                why += f" (tolerance key {key})"
+            lines.append(f"FAIL {what} {why}")
         if bool(r.passed_recorded) != bool(r.passed):
             lines.append(f"INCONSISTENT {what}: {case.path / METRICS} records passed = "
                          f"{bool(r.passed_recorded)}, but value {_num(value)} against "
@@ -150,8 +155,12 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
     on = gated(table)
     n_ok = int((table["passed"].astype(str).str.lower().isin(["true", "1"]) & on).sum())
     n_off = int((~on).sum())
+    n_u = int((on & (table.get("tolerance_kind", pd.Series(dtype=object)) == UNCERTAINTY)
+               ).sum())
     print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table) - n_off} metric(s) "
-          "passed" + (f", {n_off} not gated (not converged)" if n_off else "")
+          "passed" + (f" ({n_u} against the combined uncertainty of grid studies)"
+                      if n_u else "")
+          + (f", {n_off} not gated (not converged)" if n_off else "")
           + f", {len(found)} problem(s)", file=stream)
     for line in found:
         print(line, file=stream)

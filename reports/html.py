@@ -83,8 +83,9 @@ def _worst(metrics: pd.DataFrame) -> pd.DataFrame:
     """Per (pair, quantity, metric): the worst value over sweep points and steps."""
     m = metrics.assign(margin=metrics["value"].fillna(math.inf) / metrics["tolerance"])
     idx = m.groupby(["pair", "quantity", "metric"], sort=False)["margin"].idxmax()
-    worst = m.loc[idx, ["pair", "quantity", "metric", "value", "tolerance", "passed",
-                        "param", "step"]]
+    cols = ["pair", "quantity", "metric", "value", "tolerance", "tolerance_kind", "budget",
+            "uncertainty", "passed", "param", "step"]
+    worst = m.loc[idx, [c for c in cols if c in m.columns]]
     return worst.rename(columns={"param": "worst at param", "step": "step"})
 
 
@@ -207,6 +208,10 @@ def _metrics(case: CaseResults) -> list[str]:
         cls = "ok" if n_ok == n_on else "bad"
         parts.append(f'<p class="{cls}">{n_ok} / {n_on} gated metrics within tolerance</p>')
         if n_on:
+            parts.append("<p>Tolerance kinds: <i>budget</i> (the sum of the pair's error "
+                         "budgets), <i>case</i> (a key of the case file), <i>uncertainty</i> "
+                         "(the combined numerical uncertainty of the grid studies, shown "
+                         "beside the budget it replaced).</p>")
             parts.append(table_html(_worst(m[on]), status="passed", left=3))
         if n_on < len(m):
             parts.append(
@@ -218,7 +223,7 @@ def _metrics(case: CaseResults) -> list[str]:
                                                        "note": "why"})
             parts.append(table_html(off, left=3, row_class=lambda _: "ng"))
         cols = ["param", "step", "pair", "quantity", "metric", "value", "tolerance", "passed",
-                "status", "tolerance_key"]
+                "status", "tolerance_key", "tolerance_kind", "budget", "uncertainty"]
         parts.append("<details><summary>All metrics</summary><div class='scroll'>"
                      + table_html(m[[c for c in cols if c in m.columns]], left=5,
                                   row_class=_metric_row_class) + "</div></details>")

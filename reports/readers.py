@@ -19,6 +19,7 @@ import pandas as pd
 
 from cases.result import SUMMARY_COLUMNS, StepResult, load_step
 
+from . import uncertainty
 from .errors import IncompleteRun
 from .tolerances import GATED, NOT_CONVERGED
 
@@ -205,8 +206,9 @@ def read_metrics(path: Path) -> pd.DataFrame:
     (:func:`passes`); what the file recorded is kept as ``passed_recorded``."""
     frame = read_csv(path, required=METRICS_REQUIRED,
                      text=("quantity", "pair", "metric", "param", "case", "tolerance_key",
-                           "status", "note"),
-                     numeric=("value", "tolerance", "s", "cycle"), integer=["step"])
+                           "status", "note", "tolerance_kind"),
+                     numeric=("value", "tolerance", "s", "cycle", "budget", "uncertainty"),
+                     integer=["step"])
     missing = [c for c in ("param", "step") if c not in frame.columns]
     if missing and not frame.empty:
         raise Malformed(f"missing column(s) {', '.join(missing)}")
@@ -230,6 +232,13 @@ def read_metrics(path: Path) -> pd.DataFrame:
                         f"{i + 1}), not {GATED!r} or {NOT_CONVERGED!r}")
     frame["status"] = status
     frame["note"] = frame["note"].fillna("") if "note" in frame.columns else ""
+    frame = uncertainty.with_columns(frame)
+    bad = ~frame["tolerance_kind"].isin(uncertainty.KINDS)
+    if bad.any():
+        i = int(np.flatnonzero(bad.to_numpy())[0])
+        raise Malformed(f"column 'tolerance_kind' holds "
+                        f"{str(frame['tolerance_kind'].iloc[i])[:40]!r} (data row {i + 1}), "
+                        f"not one of {', '.join(uncertainty.KINDS)}")
     return frame
 
 

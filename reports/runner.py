@@ -37,7 +37,7 @@ from tqdm.auto import tqdm
 
 from cases.result import RunResult, atomic_write_text
 
-from . import gridstudy, layout, manifest
+from . import gridstudy, layout, manifest, uncertainty
 from .compare import METRICS_COLUMNS, compare_point
 from .errors import UserError
 from .plan import CasePlan
@@ -213,7 +213,8 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     metrics = pd.concat(parts, ignore_index=True) if parts else \
         pd.DataFrame(columns=METRICS_COLUMNS)
     if study is not None:
-        metrics = gridstudy.flag_metrics(metrics, study.table)
+        metrics = uncertainty.apply(gridstudy.flag_metrics(metrics, study.table),
+                                    study.table)
     write_csv(staging / layout.METRICS, metrics)
     body = _manifest_body(plan, got, t0, unit_wall, sources)
     if plan.convergence:

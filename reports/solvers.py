@@ -45,6 +45,11 @@ Error budgets (at the resolutions of the bundled cases, quick grids included):
   solver's grid): 0.5 % for scalars, 1 % / 2 % for field norms, 0.5 cell for lengths read
   off a grid.
 
+Model-form terms (``model_form(quantity, metric)``, for the tolerances from grid studies,
+:mod:`reports.uncertainty`): what a solver models differently from the half-space
+problem.  ``ic`` and the closed forms solve it as stated (0); the FEM's finite block is
+measured by enlarging it (:data:`FEM_BLOCK_TERMS`, ``benchmarks/fem_block.py``).
+
 Fretting loops and energy per cycle (``loop_q``: max |ΔQ| / μP over a cycle's loop
 points; ``energy``: relative difference of the energy dissipated in the cycle, every
 solver's ``energy`` being the trapezoidal rule ∮ Q dδ on its own ``steps_per_cycle``
@@ -116,6 +121,27 @@ def closed_form_budget(quantity: str, metric: str) -> float:
     return {"rel": 0.005, "l2": 0.01, "max": 0.02, "cells": 0.5, "a0": 0.02}[metric]
 
 
+#: the FEM's finite block (half-width and depth 20 a0) against the half-space: the
+#: largest relative change of a scalar when the block is enlarged to 40 a0 (quick
+#: meshes, h = a0/8, the mesh regenerated), doubled because an error decaying like a0/L
+#: leaves as much again beyond 40 a0.  Measured p_max / σ_VM,max changes: Hertz +0.05 /
+#: -0.02 %, sliding sphere μ = 0.5 +0.16 / -0.29 %, Cattaneo–Mindlin Q/μP = 0.5 +0.16 /
+#: -0.96 %, dissimilar +0.15 / +0.17 %.  vm_max_below takes the σ_VM,max term (not
+#: measured separately); wear and lengths have none (no uncertainty-based tolerance).
+FEM_BLOCK_TERMS = {"p_max": 2 * 0.0016, "vm_max": 2 * 0.0096, "vm_max_below": 2 * 0.0096}
+
+
+def no_model_form(quantity: str, metric: str) -> float:
+    """The solver models the half-space problem itself: no model-form term."""
+    return 0.0
+
+
+def fem_model_form(quantity: str, metric: str) -> float:
+    """Model-form term of the FEM (:data:`FEM_BLOCK_TERMS`) for the ``rel`` scalars it
+    was measured for; NaN for the others (no uncertainty-based tolerance without it)."""
+    return FEM_BLOCK_TERMS.get(quantity, math.nan) if metric == "rel" else math.nan
+
+
 def grid_cell(case: Case) -> float:
     """The larger cell side of the case's grid [mm]."""
     return max(case.grid.dx, case.grid.dy)
@@ -170,6 +196,9 @@ class SolverRecord:
     #: the same case with cells ``factor`` times smaller (coarser below 1), for grid
     #: studies (``run --convergence``); None: the solver has no grid to refine
     refine: Callable[[Case, float], Case] | None = None
+    #: relative error of what the solver models differently from the half-space problem
+    #: (quantity, metric) -> term, for uncertainty-based tolerances (reports.uncertainty)
+    model_form: Callable[[str, str], float] = no_model_form
     closed_form: bool = False
     solve_attr: str = "solve"
     supports_attr: str = "supports"
@@ -195,7 +224,7 @@ REGISTRY: dict[str, SolverRecord] = {
     "ic": SolverRecord("ic", "halfspace", refine=refine_grid,
                        style={"color": "C0", "ls": "-", "marker": "o", "ms": 3}),
     "fem": SolverRecord("fem", "fem_reference", budget=fem_budget, cell_size=fem_cell,
-                        refine=refine_fem,
+                        refine=refine_fem, model_form=fem_model_form,
                         style={"color": "C1", "ls": "--", "marker": "s", "ms": 3}),
     "analytic": SolverRecord("analytic", "analytic", budget=closed_form_budget,
                              cell_size=no_cell, closed_form=True,

@@ -47,6 +47,19 @@ def solve_manufactured(case, *, progress=False, on_output=None):
     return result
 
 
+BIAS = 0.008  # a defect: p_max 0.8 % too high on every grid (inside the 3.5 % budget)
+
+
+def solve_biased(case, *, progress=False, on_output=None):
+    """The exact fields with the manufactured p_max plus a grid-independent defect."""
+    result = fakes.solve_exact(case)
+    a0, p0 = case.hertz_scales
+    h = max(case.grid.dx, case.grid.dy)
+    for step in result.steps:
+        step.scalars["p_max"] = p0 * (1.0 + BIAS + C_MANUFACTURED * (h / a0) ** 2)
+    return result
+
+
 def solve_fails_coarse(case, *, progress=False, on_output=None):
     """The manufactured solver, which does not converge on grids coarser than 10 cells."""
     if case.grid.nx < 10:
@@ -240,8 +253,22 @@ def test_coarse_runs_write_no_fields_and_leave_the_results_unchanged(studied, tm
     changed = ma["status"] != mb["status"]
     assert set(ma.loc[changed, "quantity"]) == {"vm_max"}  # the oscillating one
     assert (mb["status"] == "gated").all() and (mb["note"] == "").all()
-    pd.testing.assert_frame_equal(ma.drop(columns=["status", "note"]),
-                                  mb.drop(columns=["status", "note"]))
+    # and the tolerance of the converged scalar: the combined uncertainty replaces the
+    # budget (reports.uncertainty), here Roache's GCI of an exact order-2 sequence,
+    # 1.25 C (h1/a0)² / (1 + C (h1/a0)²), with the closed form's stated 0.5 %
+    tightened = ma["tolerance"] != mb["tolerance"]
+    assert set(ma.loc[tightened, "quantity"]) == {"p_max"}
+    assert (ma.loc[tightened, "tolerance_kind"] == "uncertainty").all()
+    assert (mb["tolerance_kind"] == "budget").all() and mb["uncertainty"].eq("").all()
+    point = load_case(case)[0]
+    e = C_MANUFACTURED * (max(point.grid.dx, point.grid.dy) / point.hertz_scales[0]) ** 2
+    expected = math.hypot(1.25 * e / (1 + e), 0.005)
+    assert ma.loc[tightened, "tolerance"].to_numpy(float) == pytest.approx(expected,
+                                                                           rel=1e-9)
+    assert ma.loc[tightened, "budget"].to_numpy(float) == pytest.approx(0.035)
+    assert ma.loc[tightened, "value"].to_numpy(float) == pytest.approx(e, rel=1e-6)
+    same = ["status", "note", "tolerance", "tolerance_kind", "uncertainty"]
+    pd.testing.assert_frame_equal(ma.drop(columns=same), mb.drop(columns=same))
     assert not (plain / "small" / "convergence.csv").exists()
     # a re-run over a result with convergence.csv replaces it (its own file)
     assert run(str(case), "--out", str(out)) == 0
@@ -308,3 +335,27 @@ def test_a_malformed_convergence_table_is_damaged(studied):
     found = scan(out)
     assert not found.complete
     assert "column 'status' holds 'wobbly'" in found.damaged["small"]
+
+
+def test_the_uncertainty_tolerance_catches_what_the_budget_lets_pass(tmp_path, manufactured,
+                                                                   monkeypatch, capsys):
+    """A defect of 0.8 % in p_max that does not change with the grid: the grid study still
+    finds order 2 (the differences are the same), so the combined uncertainty is that of
+    the correct solver, 3.1 %, and the error 2.5 % + 0.8 % exceeds it; the budget (3.5 %)
+    lets it pass.  The same solver without the defect passes both (the test above)."""
+    rec = replace(solvers.REGISTRY["ic"], solve_attr="solve_biased")
+    monkeypatch.setitem(solvers.REGISTRY, "ic", rec)
+    case = write_case(tmp_path, HERTZ, "small")
+    plain, studied = tmp_path / "plain", tmp_path / "studied"
+    assert run(str(case), "--out", str(plain)) == 0
+    assert run(str(case), "--convergence", "--out", str(studied)) == 0
+    capsys.readouterr()
+    assert main(["gate", "--out", str(plain)]) == 0
+    assert main(["gate", "--out", str(studied)]) == 1
+    out = capsys.readouterr().out
+    assert re.search(r"FAIL small step 0 ic-analytic p_max rel = 0\.03\d+ > tolerance "
+                     r"0\.031\d+ \(the combined uncertainty of the grid studies; budget 0\.035, "
+                     r"tolerance key default:p_max\)", out), out
+    m = read_metrics(studied / "small" / "metrics.csv").set_index("quantity")
+    assert m.loc["p_max", "tolerance_kind"] == "uncertainty"
+    assert m.loc["p_max", "uncertainty"] < m.loc["p_max", "value"] < m.loc["p_max", "budget"]

@@ -126,7 +126,7 @@ DAMAGE: list[tuple[str, Callable[[Path], object], bool, int, int, str]] = [
     ("metrics-zero-tolerance", metric_edit("vm_max_loc", tolerance="0"), True,
      1, 1, "metrics.csv: column 'tolerance' holds 0.0 (data row 12), not a positive"),
     ("metrics-ragged-rows", lambda c: (c / "metrics.csv").write_text(
-        (c / "metrics.csv").read_text() + "1,2,3,4,5,6,7,8,9,10,11,12,13,14,15\n"), True,
+        (c / "metrics.csv").read_text() + ",".join(map(str, range(1, 31))) + "\n"), True,
      1, 1, "metrics.csv: not a valid CSV table"),
     ("summary-binary", lambda c: (c / "summary.csv").write_bytes(BINARY), True,
      1, 1, "summary.csv: not a valid CSV table"),
