@@ -40,6 +40,7 @@ from scipy.interpolate import RegularGridInterpolator
 from cases.model import Case
 from cases.result import RunResult, StepResult, vm_max_location
 
+from . import maxima, solvers
 from . import tolerances as tol
 from .cycles import compare_tables, friction_scale
 from .uncertainty import kind_of
@@ -198,17 +199,20 @@ def _plane_edges(step: StepResult, name: str, s: np.ndarray, x0: float, y0: floa
 
 
 def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
-                  x0: float = 0.0, y0: float = 0.0, singular_edge: bool = False
-                  ) -> list[tuple[str, str, float]]:
+                  x0: float = 0.0, y0: float = 0.0, singular_edge: bool = False,
+                  cell: float = 0.0) -> list[tuple[str, str, float]]:
     """Metric rows (quantity, metric, value) of step ``sa`` against reference ``sb``
     (planes through (x0, y0)).  ``singular_edge``: the surface stress is log-singular at
     the contact edge (a case that declares ``vm_max`` not converged), so the plane L2
-    norms leave out the edge band too (module doc)."""
+    norms leave out the edge band too (module doc).  ``cell``: the coarser of the two
+    solvers' own cell sizes (``SolverRecord.cell_size``, e.g. the FEM's element size),
+    the unit of the ``cells`` metrics where it is coarser than the sample spacing."""
     hx = max(_spacing(sa.x), _spacing(sb.x))
     hy = max(_spacing(sa.y), _spacing(sb.y))
     rows = _surface_rows(sa, sb, a0, p0)
     plane_rows, hz = _plane_rows(sa, sb, p0, x0, y0, hx, hy, singular_edge)
-    return rows + plane_rows + _scalar_rows(sa, sb, a0, p0, hx, hy, hz)
+    return rows + plane_rows + _scalar_rows(sa, sb, a0, p0, max(hx, cell), max(hy, cell),
+                                            max(hz, cell) if hz > 0 else 0.0)
 
 
 def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float
@@ -314,23 +318,35 @@ def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
     """metrics.csv rows for one sweep point: every pair, every common output step."""
     a0, p0 = case.hertz_scales
     mu_P = friction_scale(case)
+    x0, y0 = case.stress.x0, case.stress.y0
+    own = {n: solvers.record(n).cell_size(case) for n in results}
     records = []
     for sa_name, sb_name in pairs(list(results)):
         pair = f"{sa_name}-{sb_name}"
+        cell = max((c for c in (own[sa_name], own[sb_name]) if math.isfinite(c)),
+                   default=0.0)
         steps_a = {s.number(i): s for i, s in enumerate(results[sa_name].steps)}
         steps_b = {s.number(i): s for i, s in enumerate(results[sb_name].steps)}
         for n in sorted(set(steps_a) & set(steps_b)):
             sa, sb = steps_a[n], steps_b[n]
-            rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=case.stress.x0,
-                                 y0=case.stress.y0,
-                                 singular_edge="vm_max" in case.not_converged)
+            rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=x0, y0=y0,
+                                 singular_edge="vm_max" in case.not_converged, cell=cell)
             cycle = _scalar(sb, "cycle")
             if math.isfinite(cycle):
                 rows += compare_tables(results[sa_name].tables, results[sb_name].tables,
                                        cycle, mu_P)
+            unsure = ""
+            if any(q == "vm_max_loc" for q, _, _ in rows):
+                unsure = maxima.ambiguity(
+                    {sa_name: sa, sb_name: sb},
+                    {sa_name: _vm_location(sa), sb_name: _vm_location(sb)},
+                    tol.tolerance(case, pair, "vm_max_loc", "a0")[0] * a0,
+                    tol.tolerance(case, pair, "vm_max", "rel")[0], x0, y0)
             for quantity, metric, value in rows:
                 limit, key = tol.tolerance(case, pair, quantity, metric)
                 status, note = tol.status(case, quantity)
+                if quantity == "vm_max_loc" and unsure and status == tol.GATED:
+                    status, note = tol.NOT_CONVERGED, "not determined: " + unsure
                 records.append({
                     "status": status, "note": note,
                     "quantity": quantity, "pair": pair, "metric": metric, "value": value,

@@ -38,7 +38,9 @@ band too);
 the path direction and P the case's Hertz load (:func:`reports.compare.friction_scale`),
 the points of the two loops matched by their imposed displacements (loops of different
 paths are not compared); ``cells`` = a length difference in units of the coarser of the
-two solvers' cell sizes; ``a0`` = a length difference in units of the Hertz radius.
+two solvers' cell sizes (the larger of the sample spacing and each solver's own cell,
+``SolverRecord.cell_size``: the FEM's element size); ``a0`` = a length difference in
+units of the Hertz radius.
 
 Tolerance keys: the quantity name for a single-metric quantity (``p_max``, ``a_x``), else
 ``<quantity>_<metric>`` (``p_n_l2``, ``vm_xz_max``, ``vm_max_loc_cells``); prefixed with a
@@ -52,6 +54,9 @@ measured values; for a quantity the code knows to be singular, e.g. the surface 
 maximum at the step-like edge of a worn frictional pin, docs/formulation.md §2.6), and a
 grid study of the run (``run --convergence``) whose status for the quantity is neither
 converged nor exact for either solver of the pair (:func:`reports.gridstudy.flag_metrics`).
+A third, for ``vm_max_loc`` only: a σ_VM field with a rival maximum, farther than the
+location tolerance from the global one and within the ``vm_max`` tolerance of it, in
+either solver — where the maximum lies is then not determined (:mod:`reports.maxima`).
 A case file may not both declare a quantity not converged and set a tolerance for it, and
 declaring ``vm_max`` needs ``stress.z_below``: its companion ``vm_max_below`` is gated
 instead.
