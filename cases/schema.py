@@ -119,7 +119,19 @@ def check_types(data: dict, schema: dict, prefix: str = "") -> None:
         check_value(value, schema[key], dotted)
 
 
+#: tables whose keys may hold a dot themselves (``"ic-fem.p_max"``): a dotted key sets
+#: everything after the table's name as one key
+FLAT_TABLES = ("tolerances",)
+
+
 def set_dotted(data: dict, dotted: str, value: Any) -> None:
+    table, dot, rest = dotted.partition(".")
+    if table in FLAT_TABLES and dot and rest:
+        node = data.setdefault(table, {})
+        if not isinstance(node, dict):
+            raise CaseError(f"cannot set {dotted!r}: {table!r} is not a table")
+        node[rest] = value
+        return
     parts = dotted.split(".")
     node = data
     for part in parts[:-1]:

@@ -175,3 +175,16 @@ def test_a_singular_edge_leaves_the_band_out_of_the_plane_l2():
     assert l2(singular_edge=True) == 0.0
     bumped[edge // 2, 5] += 5.0 * p0  # an interior point still counts
     assert l2(singular_edge=True) > 0.05
+
+
+def test_a_pair_tolerance_key_can_be_set_from_quick_and_the_command_line(tmp_path):
+    """``[quick]`` and ``--set`` take a pair key whole (``tolerances.ic-fem.p_max``): the
+    pair's dot is part of the key, not a nested table."""
+    from cases.loader import load_case
+
+    text = DECLARED.split("[not_converged]")[0] + \
+        '[quick]\n"tolerances.ic-fem.p_n_l2" = 0.07\n'
+    case = write_case(tmp_path, text)
+    assert load_case(case, quick=True)[0].tolerances == {"ic-fem.p_n_l2": 0.07}
+    got = load_case(case, overrides={"tolerances.fem-analytic.p_x_max": 0.3})[0]
+    assert got.tolerances == {"fem-analytic.p_x_max": 0.3}
