@@ -82,6 +82,9 @@ def test_metrics_coloured_and_failure_named(report):
     assert re.search(r'<tr class="fail"><td class="l">ic-analytic</td><td class="l">vm_xz'
                      r'</td><td class="l">l2</td><td class="">0\.015</td>', static)
     assert '<tr class="pass">' in static
+    # each row says which kind of tolerance it used, with the budget beside U
+    assert ">tolerance_kind</th>" in static and ">uncertainty</th>" in static
+    assert "<i>uncertainty</i> (the combined numerical uncertainty" in static
     assert "FAIL static step 0 ic-analytic vm_xz l2 = 0.015 &gt; tolerance 0.01" in text
 
 
