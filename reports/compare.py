@@ -40,14 +40,12 @@ from scipy.interpolate import RegularGridInterpolator
 from cases.model import Case
 from cases.result import RunResult, StepResult, vm_max_location
 
-from . import maxima, solvers
+from . import maxima, solvers, uncertainty
 from . import tolerances as tol
 from .cycles import compare_tables, friction_scale
-from .uncertainty import kind_of
 
 METRICS_COLUMNS = ["quantity", "pair", "metric", "value", "tolerance", "passed"]
-EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key", "status", "note",
-                 "tolerance_kind", "budget", "uncertainty"]
+EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key", "status", "note"]
 _TINY = 1e-12
 
 
@@ -352,11 +350,10 @@ def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
                     "quantity": quantity, "pair": pair, "metric": metric, "value": value,
                     "tolerance": limit, "case": case.name, "param": case.param, "step": n,
                     "s": _scalar(sb, "s"), "cycle": _scalar(sb, "cycle"),
-                    "tolerance_key": key, "tolerance_kind": kind_of(key), "budget": limit,
-                    "uncertainty": math.nan,
+                    "tolerance_key": key,
                 })
     frame = pd.DataFrame.from_records(records, columns=METRICS_COLUMNS + EXTRA_COLUMNS)
-    return finish(frame)
+    return finish(uncertainty.with_columns(frame))
 
 
 def finish(frame: pd.DataFrame) -> pd.DataFrame:

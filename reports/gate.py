@@ -61,7 +61,7 @@ def metric_problems(case: CaseResults) -> list[str]:
                 why = f"= {_num(value)} against tolerance {tol} (not a finite number)"
             else:
                 why = f"= {_num(value)} > tolerance {_num(tol)}"
-            if getattr(r, "tolerance_kind", "") == UNCERTAINTY:
+            if r.tolerance_kind == UNCERTAINTY:
                 why += (f" (the combined uncertainty of the grid studies; budget "
                         f"{_num(float(r.budget))}, tolerance key {key})")
             elif isinstance(key, str) and key:
@@ -155,8 +155,7 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
     on = gated(table)
     n_ok = int((table["passed"].astype(str).str.lower().isin(["true", "1"]) & on).sum())
     n_off = int((~on).sum())
-    n_u = int((on & (table.get("tolerance_kind", pd.Series(dtype=object)) == UNCERTAINTY)
-               ).sum())
+    n_u = int((on & (table["tolerance_kind"] == UNCERTAINTY)).sum())
     print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table) - n_off} metric(s) "
           "passed" + (f" ({n_u} against the combined uncertainty of grid studies)"
                       if n_u else "")

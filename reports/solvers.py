@@ -130,7 +130,9 @@ def fem_budget(quantity: str, metric: str) -> float:
         return 0.05
     if metric == "max" and quantity in ("p_n", *_TANGENTIAL):
         return 0.07 if quantity == "p_n" else 0.15
-    return {"p_max": 0.015}.get(quantity, grid_budget(quantity, metric))
+    if quantity == "p_max":
+        return 0.015
+    return grid_budget(quantity, metric)
 
 
 def closed_form_budget(quantity: str, metric: str) -> float:

@@ -49,6 +49,8 @@ from .tolerances import GATED
 #: ``tolerance_kind`` values of a metric row
 BUDGET, CASE, UNCERTAINTY = "budget", "case", "uncertainty"
 KINDS = (BUDGET, CASE, UNCERTAINTY)
+#: the columns this module adds to metrics.csv (after those of reports.compare)
+COLUMNS = ["tolerance_kind", "budget", "uncertainty"]
 #: Eça & Hoekstra's factor on the data range of an anomalous (oscillating) study
 RANGE_FACTOR = 3.0
 #: metrics whose tolerance a grid study can set
@@ -126,8 +128,8 @@ def apply(metrics: pd.DataFrame, frame: pd.DataFrame | None) -> pd.DataFrame:
 
 
 def with_columns(metrics: pd.DataFrame) -> pd.DataFrame:
-    """``metrics`` with ``tolerance_kind``, ``budget`` and ``uncertainty`` present (from
-    the tolerance key and the tolerance where a run did not write them)."""
+    """``metrics`` with :data:`COLUMNS` present: from the tolerance key and the tolerance
+    where they are missing (a fresh comparison, or a file an older run wrote)."""
     out = metrics.copy()
     if "tolerance_kind" not in out.columns:
         keys = out["tolerance_key"].fillna("") if "tolerance_key" in out.columns else \

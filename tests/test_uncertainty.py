@@ -39,7 +39,8 @@ def metric_row(pair: str, quantity: str, value: float, tolerance: float,
 
 
 def metrics(*rows: dict) -> pd.DataFrame:
-    return finish(pd.DataFrame.from_records(rows, columns=METRICS_COLUMNS + EXTRA_COLUMNS))
+    columns = METRICS_COLUMNS + EXTRA_COLUMNS + uncertainty.COLUMNS
+    return finish(pd.DataFrame.from_records(rows, columns=columns))
 
 
 def order_two(f0: float, c: float) -> tuple[float, float, float]:
