@@ -11,7 +11,7 @@ import time
 
 import numpy as np
 
-from cases.model import Case
+from cases.model import Case, Fretting
 from cases.result import StepResult
 
 from . import fields, wear
@@ -19,22 +19,19 @@ from . import fretting as fr
 
 
 def imposed_cycle(amplitude: float, steps_per_cycle: int) -> np.ndarray:
-    """The displacements of one cycle as the fretting solvers impose them: +A -> -A -> +A
-    in ``steps_per_cycle`` equal steps of 2A / (steps_per_cycle // 2), the start +A
-    excluded (its last point is +A)."""
-    half = steps_per_cycle // 2
-    down = amplitude * (1 - 2 * np.arange(1, half + 1) / half)  # +A -> -A
-    return np.concatenate([down, down[::-1][1:], [amplitude]])  # -A -> +A, same points
+    """The displacements of one cycle as the fretting solvers impose them
+    (:meth:`cases.model.Fretting.cycle_path`)."""
+    return Fretting(amplitude=amplitude, steps_per_cycle=steps_per_cycle).cycle_path()
 
 
 def imposed_history(amplitude: float, steps_per_cycle: int) -> tuple[np.ndarray, int]:
     """(history, q): the whole imposed displacement history of a first cycle from the
-    unloaded contact — the quarter-cycle loading 0 -> +A in q = steps_per_cycle // 4
-    (at least 1) equal steps, then :func:`imposed_cycle`; ``history[q:]`` is the closed
-    cycle from +A (its first point) back to +A."""
-    q = max(steps_per_cycle // 4, 1)
-    return (np.concatenate([amplitude * np.arange(0, q + 1) / q,
-                            imposed_cycle(amplitude, steps_per_cycle)]), q)
+    unloaded contact — 0, the initial loading 0 -> +A in q steps
+    (:meth:`cases.model.Fretting.loading_path`), then :func:`imposed_cycle`;
+    ``history[q:]`` is the closed cycle from +A (its first point) back to +A."""
+    path = Fretting(amplitude=amplitude, steps_per_cycle=steps_per_cycle)
+    loading = path.loading_path()
+    return np.concatenate([[0.0], loading, path.cycle_path()]), loading.size
 
 
 def trapezoid_energy(amplitude: float, steps_per_cycle: int, mu: float, P: float,

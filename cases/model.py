@@ -144,6 +144,23 @@ class Fretting:
     jump: float = 1.0  # cycle-jump (wear acceleration) factor
     output_cycles: tuple[int, ...] = ()
 
+    def loading_path(self):
+        """The imposed displacements of the initial loading 0 -> +A: q =
+        max(steps_per_cycle // 4, 1) equal steps, the start 0 excluded."""
+        import numpy as np
+
+        q = max(self.steps_per_cycle // 4, 1)
+        return self.amplitude * np.arange(1, q + 1) / q
+
+    def cycle_path(self):
+        """The imposed displacements of one cycle +A -> -A -> +A: steps of
+        2A / (steps_per_cycle // 2), the start +A excluded (its last point is +A)."""
+        import numpy as np
+
+        half = self.steps_per_cycle // 2
+        down = self.amplitude * (1 - 2 * np.arange(1, half + 1) / half)  # +A -> -A
+        return np.concatenate([down, down[::-1][1:], [self.amplitude]])  # -A -> +A
+
 
 @dataclass(frozen=True)
 class StressOutput:

@@ -32,7 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from tqdm.auto import tqdm
 
-from cases.model import Case
+from cases.model import Case, Fretting
 from cases.result import RunEvent, RunResult, StepResult
 
 from .contact import STICK, ContactNotConverged, ContactSolver, ContactState, StepSolution
@@ -134,10 +134,9 @@ def sliding_wear(case: Case, progress: bool = False,
 
 
 def fretting_path(amplitude: float, steps_per_cycle: int) -> np.ndarray:
-    """Imposed displacements of one cycle +A -> -A -> +A (excluding the start +A)."""
-    half = steps_per_cycle // 2
-    down = amplitude * (1 - 2 * np.arange(1, half + 1) / half)  # +A -> -A
-    return np.concatenate([down, down[::-1][1:], [amplitude]])  # -A -> +A on the same points
+    """Imposed displacements of one cycle +A -> -A -> +A (excluding the start +A):
+    :meth:`cases.model.Fretting.cycle_path`."""
+    return Fretting(amplitude=amplitude, steps_per_cycle=steps_per_cycle).cycle_path()
 
 
 def fretting(case: Case, progress: bool = False,
@@ -198,8 +197,7 @@ def _initial_loading(case: Case, solver: ContactSolver, h0: np.ndarray, normal: 
     the step solution at +A."""
     fr = case.fretting
     sol = solver.solve(h0, **normal)
-    quarter = fr.steps_per_cycle // 4 or 1
-    for u in fr.amplitude * np.arange(1, quarter + 1) / quarter:
+    for u in fr.loading_path():
         sol = solver.solve(h0, **normal, shift=u * d, prev=sol.state)
     return sol
 
