@@ -37,7 +37,7 @@ forces ``f = Gᵀ W t`` on body a, and the Newton iteration works on the dense s
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 import scipy.linalg as la
@@ -129,12 +129,13 @@ class Evaluation:
 
 
 def evaluate(law: Law, pts: Points, u: np.ndarray, delta: float, D: np.ndarray,
-             cw: float = 0.0) -> Evaluation:
+             cw: float | np.ndarray = 0.0) -> Evaluation:
     """Tractions on body a, states and consistent tangents at the points ``pts``.
 
     Augmented laws (Eqs. 15-17 with the multipliers ``pts.lam_n``, ``pts.t_old``):
     ``p_n = ⟨λ_n − k_n g_n⟩ / (1 + k_n c_w)`` and the predictor
-    ``p_t* = λ_t − k_t 𝕄² (g_t − g_t,old)``.  With λ_n = 0 and λ_t the last converged
+    ``p_t* = λ_t − k_t 𝕄² (g_t − g_t,old)``; ``cw``: the wear compliance, one value or
+    one per point.  With λ_n = 0 and λ_t the last converged
     traction they are the plain penalty laws; :func:`augmented` iterates the multipliers
     until the gap and the stick condition hold exactly.
     """
@@ -206,8 +207,13 @@ class Control:
     ``P``: total normal load (None: the approach ``delta`` is prescribed).
     ``Q``: total tangential load (x, y) with ``None`` per component for a prescribed
     ``D`` (rigid tangential displacement g_t,o) in that component.
-    ``sym``: symmetry factor (4 quarter, 2 half, 1 full); ``q_free``: components of the
-    tangential load that are not fixed by symmetry.
+    ``sym``: symmetry factor (4 quarter, 2 half, 1 full).
+    ``approach``: under approach control with a far-field ``compliance`` c > 0 (the
+    block's missing compliance, :meth:`fem_reference.model.FemModel.far_compliance`)
+    the half-space approach: δ is then an unknown with the equation δ + c P = approach.
+    ``shift``: likewise the half-space's rigid tangential displacement per component
+    (None: ``D`` itself is prescribed) with the tangential ``compliance_t``: D_c + c_t Q_c
+    = shift_c.
     """
 
     P: float | None
@@ -215,6 +221,10 @@ class Control:
     D: np.ndarray
     Q: tuple[float | None, float | None] = (None, None)
     sym: float = 1.0
+    approach: float | None = None
+    compliance: float = 0.0
+    shift: tuple[float | None, float | None] = (None, None)
+    compliance_t: float = 0.0
 
 
 @dataclass
@@ -267,7 +277,7 @@ def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray,
 
 
 def newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray, *,
-           cw: float = 0.0, tol: float = 1e-9, max_iter: int = 150,
+           cw: float | np.ndarray = 0.0, tol: float = 1e-9, max_iter: int = 150,
            memo: dict | None = None) -> Solution:
     """Semi-smooth Newton iteration of the condensed contact problem.
 
@@ -286,7 +296,7 @@ MAX_OUTER = 40  # multiplier updates of one augmented solve
 
 
 def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control,
-              u0: np.ndarray, *, cw: float = 0.0, tol: float = 1e-9,
+              u0: np.ndarray, *, cw: float | np.ndarray = 0.0, tol: float = 1e-9,
               max_outer: int = MAX_OUTER) -> Solution:
     """Augmented-Lagrangian solve (Alart & Curnier 1991; Eqs. 15-17 on the penalty): the
     penalty Newton solve of :func:`newton` with the multipliers λ_n = ``pts.lam_n`` and
@@ -302,7 +312,7 @@ def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control
     change = float("inf")
     memo: dict = {}
     for outer in range(1, max_outer + 1):
-        step_ctrl = Control(P=ctrl.P, delta=delta, D=D, Q=ctrl.Q, sym=ctrl.sym)
+        step_ctrl = replace(ctrl, delta=delta, D=D)
         sol = newton(K, C, law, pts, step_ctrl, u, cw=cw, tol=tol, memo=memo)
         total += sol.iterations
         ev = sol.ev
@@ -324,7 +334,8 @@ def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control
 
 
 def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray,
-            *, cw: float, tol: float, max_iter: int, memo: dict | None = None) -> Solution:
+            *, cw: float | np.ndarray, tol: float, max_iter: int, memo: dict | None = None
+            ) -> Solution:
     eqs = _Equations(K=K, C=C, law=law, pts=pts, ctrl=ctrl, cw=cw, extra=_unknowns(ctrl),
                      memo=memo)
     u = u0.copy()
@@ -347,14 +358,19 @@ def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, 
 
 
 def _unknowns(ctrl: Control) -> tuple[tuple[str, int | None], ...]:
-    """The unknowns besides u: ``("delta", None)`` under load control on P, ``("D", c)``
-    for each tangential load component c."""
+    """The unknowns besides u: ``("delta", None)`` under load control on P,
+    ``("approach", None)`` (δ too) under approach control with a far-field compliance,
+    ``("D", c)`` for each tangential load component c."""
     extra = []
     if ctrl.P is not None:
         extra.append(("delta", None))
+    elif ctrl.approach is not None and ctrl.compliance != 0:
+        extra.append(("approach", None))
     for c in (0, 1):
         if ctrl.Q[c] is not None:
             extra.append(("D", c))
+        elif ctrl.shift[c] is not None and ctrl.compliance_t != 0:
+            extra.append(("shift", c))
     return tuple(extra)
 
 
@@ -369,7 +385,7 @@ class _Equations:
     law: Law
     pts: Points
     ctrl: Control
-    cw: float
+    cw: float | np.ndarray
     extra: tuple[tuple[str, int | None], ...]
     memo: dict | None = None  # the last factorisation (:func:`_solve_stiffened`)
 
@@ -384,18 +400,28 @@ class _Equations:
         for kind, c in self.extra:
             if kind == "delta":
                 Re.append(np.sum(w * ev.pn) - ctrl.P / ctrl.sym)
+            elif kind == "approach":  # δ + c P = approach [mm]
+                Re.append(delta + ctrl.compliance * ctrl.sym * np.sum(w * ev.pn) - ctrl.approach)
+            elif kind == "shift":  # D_c + c_t Q_c = shift_c [mm]
+                Re.append(D[c] + ctrl.compliance_t * ctrl.sym * np.sum(w * ev.t[:, c])
+                          - ctrl.shift[c])
             else:
                 Re.append(np.sum(w * ev.t[:, c]) - ctrl.Q[c] / ctrl.sym)
         return ev, f, Ru, np.asarray(Re, dtype=float)
 
     def merit(self, f: np.ndarray, Ru: np.ndarray, Re: np.ndarray) -> float:
         """Relative residual: ‖Ru‖ over the nodal forces ‖f‖, the control residuals over
-        the nodal forces of the loads (‖f‖ when there are no loads)."""
+        the nodal forces of the loads (‖f‖ when there are no loads), the approach's over
+        the approach."""
         ctrl = self.ctrl
         load_scale = max(abs(ctrl.P or 0.0), *(abs(q or 0.0) for q in ctrl.Q)) / ctrl.sym
         fs = max(np.linalg.norm(f), 1e-300)
         ls = load_scale if load_scale > 0 else fs
-        return max(np.linalg.norm(Ru) / fs, *(np.abs(Re) / ls), 0.0)
+        shift_scale = max(max(abs(v or 0.0) for v in ctrl.shift),
+                          ctrl.compliance_t * ctrl.sym * ls, 1e-300)
+        scales = [abs(ctrl.approach) if kind == "approach" else
+                  shift_scale if kind == "shift" else ls for kind, _ in self.extra]
+        return max(np.linalg.norm(Ru) / fs, *(np.abs(Re) / np.asarray(scales)), 0.0)
 
     def newton_step(self, ev: Evaluation, Ru: np.ndarray, Re: np.ndarray, it: int,
                     res: float) -> np.ndarray:
@@ -404,17 +430,23 @@ class _Equations:
         w, G, extra = self.pts.w, self.pts.G, self.extra
         m, ne = self.K.shape[0], len(extra)
         B = -(G.T @ _weighted_blocks(w, ev.T) @ G)
-        dcols = [ev.Tdelta if kind == "delta" else ev.TD[:, :, c] for kind, c in extra]
+        dcols = [ev.Tdelta if c is None else ev.TD[:, :, c] for kind, c in extra]
         U = np.empty((m, ne))
         V = np.empty((ne, m))
         W = np.empty((ne, ne))
         for j, d in enumerate(dcols):
             U[:, j] = -(G.T @ np.concatenate([w * d[:, 0], w * d[:, 1], w * d[:, 2]]))
         for i, (kind, c) in enumerate(extra):
-            r = 2 if kind == "delta" else c  # row of T: p_n or t_c
+            r = 2 if c is None else c  # row of T: p_n or t_c
             V[i] = G.T @ np.concatenate([w * ev.T[:, r, 0], w * ev.T[:, r, 1], w * ev.T[:, r, 2]])
             for j, d in enumerate(dcols):
                 W[i, j] = np.sum(w * d[:, r])
+            if kind in ("approach", "shift"):  # displacement equations: rows × c sym, + 1
+                cs = self.ctrl.sym * (self.ctrl.compliance if kind == "approach"
+                                      else self.ctrl.compliance_t)
+                V[i] *= cs
+                W[i] *= cs
+                W[i, i] += 1.0
         try:
             X = _solve_stiffened(self.C, B, np.column_stack([-Ru, U]), self.memo)
             xu, Xu = X[:, 0], X[:, 1:]
@@ -435,8 +467,8 @@ class _Equations:
         for _ in range(12):
             u_t = u + step * dx[:m]
             delta_t, D_t = delta, D.copy()
-            for j, (kind, c) in enumerate(self.extra):
-                if kind == "delta":
+            for j, (_, c) in enumerate(self.extra):
+                if c is None:
                     delta_t += step * dx[m + j]
                 else:
                     D_t[c] += step * dx[m + j]

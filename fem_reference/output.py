@@ -20,7 +20,9 @@ the area inside r(θ), ``stick_area`` the dual weights of the stick nodes summed
 ``slip_area`` the rest; ``a_x, a_y`` half the closed length of the lines through the
 centre; ``p_max`` the largest nodal pressure; ``vm_max`` and its
 location over both planes (the plane samples, :func:`cases.result.vm_max_location`);
-``wall_s`` the time since ``solve`` started.  Extra: ``approach`` (δ), ``shift_x/y``
+``wall_s`` the time since ``solve`` started.  Extra: ``approach`` (the half-space's
+δ, :mod:`fem_reference.far_field`; ``approach_block`` the blocks'), ``shift_x/y``
+(likewise; ``shift_block_x/y``)
 (g_t,o), ``P_reaction`` (the support reaction of the block: global equilibrium),
 ``vm_axis_max``/``vm_axis_z`` (the on-axis σ_VM maximum and its depth from a
 least-squares cubic, :func:`fem_reference.stress_planes.axis_peak`).
@@ -90,7 +92,8 @@ def step_output(run: Run, out: OutputState, *, t0: float, vtu: bool = True) -> S
     planes, axis = stress_planes(m, run.locator, u_body, mat.nu, mat.E)
     tables[f"axis/{out.step}"] = axis
     scalars = step_scalars(run, out, zone, tractions, planes, axis)
-    scalars.update(_body_scalars(run, u_body, mat, t0))
+    scalars.update(_body_scalars(run, u_body, mat, t0, scalars["P"],
+                                 (scalars["Qx"], scalars["Qy"])))
     mesh = fields_mesh(m.space, u_body, mat.nu, mat.E) if vtu else None
     g = case.grid
     result = StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(), surface=surface,
@@ -181,7 +184,7 @@ def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tract
     wear_q = nodes.wear_a + nodes.wear_b
     wear_probe = run.probes.wear_a + run.probes.wear_b
     return {
-        "step": out.step, "s": out.s, "cycle": float("nan"),
+        "step": out.step, "s": out.s, "cycle": out.cycle,
         "P": sym.factor * float(np.sum(w * ev.pn)),
         "Qx": Q[0], "Qy": Q[1],
         "contact_area": sym.factor * zone.area,
@@ -197,11 +200,17 @@ def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tract
     }
 
 
-def _body_scalars(run: Run, u_body: np.ndarray, mat: Body, t0: float) -> dict[str, float]:
-    """``wall_s`` and the state scalars: approach, support reaction, shift."""
+def _body_scalars(run: Run, u_body: np.ndarray, mat: Body, t0: float, P: float,
+                  Q: tuple[float, float]) -> dict[str, float]:
+    """``wall_s`` and the state scalars: the approach and the shift (the half-space's:
+    the blocks' δ plus c P and g_t,o plus c_t Q, :mod:`fem_reference.far_field`;
+    ``approach_block``, ``shift_block_x/y`` the blocks' own), support reaction."""
     return {
         "wall_s": time.perf_counter() - t0,
-        "approach": float(run.delta),
+        "approach": float(run.delta) + run.compliance * P,
+        "approach_block": float(run.delta),
         "P_reaction": run.model.support_reaction(u_body, mat),
-        "shift_x": float(run.D[0]), "shift_y": float(run.D[1]),
+        "shift_x": float(run.D[0]) + run.compliance_t * Q[0],
+        "shift_y": float(run.D[1]) + run.compliance_t * Q[1],
+        "shift_block_x": float(run.D[0]), "shift_block_y": float(run.D[1]),
     }

@@ -11,12 +11,13 @@ recovery (:mod:`fem_reference.output`) reads both.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.sparse as sp
 
 from .contact import Evaluation, Points, Solution
+from .far_field import block_offset, block_offset_t
 from .model import FemModel
 from .nodal import coefficients, dual_weights, modified_basis
 from .sampling import ProbeSampling, probe_layout, probe_sampling
@@ -36,15 +37,17 @@ class Run:
     sampling: ProbeSampling
     locator: PointLocator  # finds the elements of stress sample points
     u: np.ndarray  # relative surface displacements (condensed DOFs)
-    delta: float  # rigid approach δ
+    delta: float  # rigid approach δ of the blocks
     D: np.ndarray  # rigid tangential displacement g_t,o
+    compliance: float = 0.0  # far-field compliance c: half-space approach = δ + c P
+    compliance_t: float = 0.0  # tangential: half-space shift = D + c_t Q (Q on body a)
 
 
 @dataclass(frozen=True)
 class OutputState:
     """A converged state the load path reports: output step ``step`` at sliding distance
-    ``s``, its solution, the probe evaluation, the slip of the step at the probes and the
-    contact iterations it took."""
+    ``s`` or fretting cycle ``cycle``, its solution, the probe evaluation, the slip of
+    the step at the probes, the contact iterations it took and the run's tables so far."""
 
     step: int
     sol: Solution
@@ -52,6 +55,8 @@ class OutputState:
     slip: np.ndarray  # (nprobes, 2), global frame
     iterations: int
     s: float = float("nan")
+    cycle: float = float("nan")
+    tables: dict = field(default_factory=dict)  # run tables so far (fretting loops, cycles)
 
 
 def start_run(model: FemModel) -> Run:
@@ -72,7 +77,33 @@ def start_run(model: FemModel) -> Run:
     return Run(model=model, nodes=nodes, probes=probes, G_all=G_all,
                Nmod=(sampling.N @ B.T).tocsr(), sampling=sampling,
                locator=PointLocator(model.space),
-               u=u, delta=delta, D=np.zeros(2))
+               u=u, delta=delta, D=np.zeros(2),
+               **dict(zip(("compliance", "compliance_t"),
+                          far_compliance(model, nodes, G_all), strict=True)))
+
+
+def far_compliance(model: FemModel, nodes: Points, G_all: sp.csr_matrix
+                   ) -> tuple[float, float]:
+    """(c, c_t) = Σ_bodies c₁(ν)/E [mm/N], the normal and tangential far-field
+    compliances the blocks lack (:mod:`fem_reference.far_field`): normal from a unit load
+    of the Hertz distribution of radius a_ref applied through the contact points'
+    weights, tangential from a unit force at the axis (0 for the quarter model, which
+    carries no tangential load)."""
+    case, a = model.case, model.a_ref
+    r2 = (nodes.xy**2).sum(axis=1)
+    p = np.sqrt(np.maximum(1.0 - r2 / a**2, 0.0))
+    p /= model.sym.factor * float(nodes.w @ p)
+    n = nodes.n
+    f_b = -(G_all.T @ np.concatenate([np.zeros(2 * n), nodes.w * p]))  # into block b
+    nodes_xyz = model.space.nodes
+    c1 = {nu: block_offset(model.factor[nu], model.free, model.surface.dofs, f_b,
+                           nodes_xyz, a, nu)[0] for nu in model.factor}
+    c1t = {nu: 0.0 if model.shape == "quarter" else
+           block_offset_t(model.factor[nu], model.free, nodes_xyz, a, nu,
+                          model.sym.factor)[0] for nu in model.factor}
+    # Q is the resultant on body a and opposes the rigid shift g_t,o: shift = D − c₁ₜ Q/E
+    return (c1[case.a.nu] / case.a.E + c1[case.b.nu] / case.b.E,
+            -(c1t[case.a.nu] / case.a.E + c1t[case.b.nu] / case.b.E))
 
 
 def hertz_start(model: FemModel, pts: Points, frac: float = 1.0) -> tuple[np.ndarray, float]:
