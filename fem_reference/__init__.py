@@ -12,7 +12,7 @@ Public API:
 - :func:`estimate` ``(case) -> cases.result.Cost``: peak memory and wall time of a run,
   before any meshing (:mod:`fem_reference.cost`);
 - :class:`FemUnsupported` (a ``CaseError``: the case needs a feature the model does not
-  have, e.g. fretting or P1), :class:`FemError` (a failure such as the contact leaving
+  have, e.g. P1), :class:`FemError` (a failure such as the contact leaving
   the FE contact zone), :class:`MeshError` (gmsh failed) and
   :class:`ContactConvergenceError` (contact iteration failed; message has the residual).
 """
@@ -38,9 +38,9 @@ def solve(case: Case, *, progress: bool = False,
 
 
 def supports(case: Case) -> str | None:
-    """None when the FE model implements the case (P2 elements, static and sliding-wear
-    cases), else why not (fretting is not implemented)."""
-    if case.kind not in ("static", "sliding_wear"):
+    """None when the FE model implements the case (P2 elements; static, sliding-wear and
+    fretting cases), else why not."""
+    if case.kind not in ("static", "sliding_wear", "fretting"):
         return f"kind {case.kind!r} is not implemented by the FEM reference"
     if case.fem.order != 2:
         return f"fem.order = {case.fem.order}: the FEM reference implements P2 only"

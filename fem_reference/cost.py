@@ -41,8 +41,12 @@ FemModel`:
 Assembly grows like h⁻³, the factor (n^(4/3)) and the dense operator (m²) like h⁻⁴; the
 condensation blocks lead down to h ≈ a0/30 with friction (3 components), a0/250 without,
 the dense operators below.  :attr:`Cost.memory_keys` and ``time_keys`` are
-the keys whose refinement (fem.h halved; fem.block, fem.depth, sliding_wear.distance
-doubled; sliding_wear.step halved) raises the estimate by 10 % or more, strongest first.
+the keys whose refinement (fem.h halved; fem.block, fem.depth, sliding_wear.distance,
+fretting.cycles, fretting.steps_per_cycle doubled; sliding_wear.step halved) raises the
+estimate by 10 % or more, strongest first.  Fretting counts its contact solves like the
+load path (fem_reference/fretting.py): normal loading, the loading steps 0 -> +A, and
+per simulated cycle ``steps_per_cycle`` steps of a predictor and (with wear) a
+corrector solve.
 
 Time (a cold point: a sweep reuses the mesh, factorisation and condensation for its
 later points, :func:`fem_reference.model._core`): 2 s of start-up and writing; meshing
@@ -267,6 +271,14 @@ def contact_solves(case: Case, law: str) -> tuple[float, int, int]:
         n = max(int(round(sw.distance / sw.step)), 1) if sw.step > 0 else 1
         outputs = len(sw.output_s) + 2 if sw.output_s else n + 1
         return n + 1, ITERATIONS["wear"], min(outputs, n + 1)
+    if case.kind == "fretting" and case.fretting is not None and law == "friction":
+        fr = case.fretting
+        n_sim = max(math.ceil(fr.cycles / fr.jump), 1) if fr.jump > 0 else 1
+        per_step = 2 if max(case.a.i1, case.a.i2, case.b.i1, case.b.i2) > 0 else 1
+        loading = max(fr.steps_per_cycle // 4, 1)
+        outputs = min(len(fr.output_cycles) + 1, n_sim)
+        return (1 + loading + n_sim * fr.steps_per_cycle * per_step, ITERATIONS["friction"],
+                outputs)
     if law != "friction":
         return 1, ITERATIONS["single"], 1
     n_normal = 1.0 if case.identical_materials else sum((k / 5) ** 2 for k in range(1, 6))
@@ -322,11 +334,14 @@ def _finite_or_inf(value: float) -> float:
 
 
 def _with(case: Case, key: str, factor: float) -> Case:
-    """``case`` with the numeric ``key`` (fem.* or sliding_wear.*) multiplied."""
+    """``case`` with the numeric ``key`` (fem.*, sliding_wear.* or fretting.*)
+    multiplied (an integer key stays an integer)."""
     section, name = key.split(".")
     sub = getattr(case, section)
-    return dataclasses.replace(case, **{section: dataclasses.replace(
-        sub, **{name: getattr(sub, name) * factor})})
+    value = getattr(sub, name) * factor
+    if isinstance(getattr(sub, name), int):
+        value = int(round(value))
+    return dataclasses.replace(case, **{section: dataclasses.replace(sub, **{name: value})})
 
 
 def _drivers(case: Case, base: Breakdown) -> tuple[tuple[str, ...], tuple[str, ...]]:
@@ -348,6 +363,8 @@ def _drivers(case: Case, base: Breakdown) -> tuple[tuple[str, ...], tuple[str, .
     moves = [("fem.h", 0.5), ("fem.block", 2.0), ("fem.depth", 2.0)]
     if case.kind == "sliding_wear" and case.sliding_wear is not None:
         moves += [("sliding_wear.distance", 2.0), ("sliding_wear.step", 0.5)]
+    if case.kind == "fretting" and case.fretting is not None:
+        moves += [("fretting.cycles", 2.0), ("fretting.steps_per_cycle", 2.0)]
     mem, sec = {}, {}
     for key, factor in moves:
         b = breakdown(_with(case, key, factor))

@@ -1,4 +1,5 @@
-"""The load path of a run: static load steps and sliding-wear steps.
+"""The load path of a run: static load steps and sliding-wear steps (fretting:
+:mod:`fem_reference.fretting`).
 
 - static cases: the normal load (or approach) first — in one step for identical
   materials (no normal–tangential coupling), in 5 increments otherwise — then a
@@ -39,29 +40,43 @@ def load_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
         return static_path(run, progress)
     if kind == "sliding_wear":
         return sliding_wear_path(run, progress)
+    if kind == "fretting":
+        from .fretting import fretting_path
+
+        return fretting_path(run, progress)
     raise FemUnsupported(f"kind {kind!r} is not supported by fem_reference")
 
 
 def control(run: Run, P_frac: float = 1.0, Q_frac: float = 0.0) -> Control:
     """The control of a solve at fractions of the case's normal and tangential loads
-    (approach and shift likewise); the state's δ and g_t,o where they are unknowns."""
+    (approach and shift likewise); the state's δ and g_t,o where they are unknowns.  A
+    held approach or shift is the half-space's: the blocks' δ and g_t,o follow from
+    the far-field compliances (:mod:`fem_reference.far_field`)."""
     m = run.model
     load = m.case.load
     P = None if load.P is None else load.P * P_frac
-    delta = run.delta if load.P is not None else load.approach * P_frac
+    approach = None if load.P is not None else load.approach * P_frac
     Q: tuple = (None, None)
+    shift: tuple = (None, None)
     D = run.D.copy()
     if load.tangential_mode == "load" and Q_frac > 0:
         qx, qy = (load.Qx or 0.0) * Q_frac, (load.Qy or 0.0) * Q_frac
         Q = (qx, None) if m.shape == "half" else (qx, qy)
     elif load.tangential_mode == "shift":
-        D = np.array([load.shift_x or 0.0, load.shift_y or 0.0]) * Q_frac
-    return Control(P=P, delta=delta, D=D, Q=Q, sym=m.sym.factor)
+        target = np.array([load.shift_x or 0.0, load.shift_y or 0.0]) * Q_frac
+        shift = (target[0], None if m.shape == "half" else target[1])
+        if run.compliance_t == 0:
+            D = target
+    delta = approach if approach is not None and run.compliance == 0 else run.delta
+    return Control(P=P, delta=delta, D=D, Q=Q, sym=m.sym.factor, approach=approach,
+                   compliance=run.compliance, shift=shift, compliance_t=run.compliance_t)
 
 
-def solve_increment(run: Run, ctrl: Control, cw: float = 0.0) -> tuple[Solution, Evaluation]:
-    """Solve the contact under ``ctrl`` (wear compliance ``cw``) from the current state,
-    make the solution the run's state and evaluate the probes on it.
+def solve_increment(run: Run, ctrl: Control, cw: float | np.ndarray = 0.0
+                    ) -> tuple[Solution, Evaluation]:
+    """Solve the contact under ``ctrl`` (wear compliance ``cw``, one value or one per
+    node) from the current state, make the solution the run's state and evaluate the
+    probes on it.
 
     Raises :class:`~fem_reference.model.FemError` when the contact reaches the edge of
     the FE contact zone (1.5 elements from r_c).
@@ -79,15 +94,15 @@ def solve_increment(run: Run, ctrl: Control, cw: float = 0.0) -> tuple[Solution,
                 f"(r_c = {m.surface.r_c:.4g} mm)"
             )
     run.u, run.delta, run.D = sol.u, sol.delta, sol.D.copy()
-    return sol, probe_evaluation(run, sol.ev, cw)
+    return sol, probe_evaluation(run, sol.ev)
 
 
-def probe_evaluation(run: Run, ev: Evaluation, cw: float) -> Evaluation:
+def probe_evaluation(run: Run, ev: Evaluation) -> Evaluation:
     """The state at the probes: gaps from the P2 displacement field, tractions and
     states from the nodal solution ``ev`` (linear on the facets' sub-triangles; a probe
     sticks where its stick weight, the interpolated stick indicator, is at least 1/2)."""
     m = run.model
-    probe = evaluate(m.law, run.probes, run.u, run.delta, run.D, cw)
+    probe = evaluate(m.law, run.probes, run.u, run.delta, run.D)
     Nsub = run.sampling.Nsub
     pn = Nsub @ ev.pn
     t = Nsub @ ev.t
@@ -104,15 +119,15 @@ def commit(run: Run, sol: Solution, probe_ev: Evaluation) -> None:
         pts.gt_old = ev.gt.copy()
 
 
-def add_wear(run: Run, sol: Solution, probe_ev: Evaluation, ca: float, cb: float) -> None:
-    """Add the wear of a sliding step, Δw = p_n ‖Δg‖_i, to bodies a and b: nodal
-    coefficients in the modified basis (the weighted gap, :mod:`fem_reference.nodal`),
-    and at the probes the wear field they define (the field the gap of the probes
-    holds)."""
-    dw = sol.ev.pn
-    for pts, inc in ((run.nodes, dw), (run.probes, run.Nmod @ dw)):
-        pts.wear_a = pts.wear_a + inc * ca
-        pts.wear_b = pts.wear_b + inc * cb
+def add_wear(run: Run, dw_a: np.ndarray, dw_b: np.ndarray) -> None:
+    """Add the wear increments of a step, Δw = p_n ‖Δg‖_i per node, to bodies a and b:
+    nodal coefficients in the modified basis (the weighted gap,
+    :mod:`fem_reference.nodal`), and at the probes the wear field they define (the
+    field the gap of the probes holds)."""
+    for pts, inc_a, inc_b in ((run.nodes, dw_a, dw_b),
+                              (run.probes, run.Nmod @ dw_a, run.Nmod @ dw_b)):
+        pts.wear_a = pts.wear_a + inc_a
+        pts.wear_b = pts.wear_b + inc_b
 
 
 def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
@@ -129,16 +144,9 @@ def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
             slip[:] = slide_direction(case)
         yield OutputState(step=0, sol=sol, probe_ev=pev, slip=slip, iterations=iters)
         return
-    n_normal = 1 if case.identical_materials else N_NORMAL_DISSIMILAR
-    if n_normal > 1:  # start the first increment from its own Hertz solution
-        run.u, run.delta = hertz_start(m, run.nodes, 1.0 / n_normal)
     n_tangential = N_TANGENTIAL if mode in ("load", "shift") else 0
-    with _bar(progress, n_normal + n_tangential, case) as bar:
-        for i in range(1, n_normal + 1):
-            sol, pev = solve_increment(run, control(run, P_frac=i / n_normal))
-            commit(run, sol, pev)
-            iters += sol.iterations
-            bar.update()
+    with _bar(progress, normal_increments(case) + n_tangential, case) as bar:
+        sol, pev, iters = normal_loading(run, bar)
         gt_ref = pev.gt.copy()
         for i in range(1, n_tangential + 1):
             sol, pev = solve_increment(run, control(run, Q_frac=i / N_TANGENTIAL))
@@ -147,6 +155,29 @@ def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
             bar.update()
     slip = pev.gt - gt_ref
     yield OutputState(step=0, sol=sol, probe_ev=pev, slip=slip, iterations=iters)
+
+
+def normal_increments(case: Case) -> int:
+    """Increments of the normal loading: one for identical materials (no
+    normal–tangential coupling), :data:`N_NORMAL_DISSIMILAR` otherwise."""
+    return 1 if case.identical_materials else N_NORMAL_DISSIMILAR
+
+
+def normal_loading(run: Run, bar=None) -> tuple[Solution, Evaluation, int]:
+    """The normal load (or approach) in :func:`normal_increments` increments with the
+    friction history committed; the last solution, its probe evaluation and the Newton
+    iterations of all increments."""
+    n_normal = normal_increments(run.model.case)
+    if n_normal > 1:  # start the first increment from its own Hertz solution
+        run.u, run.delta = hertz_start(run.model, run.nodes, 1.0 / n_normal)
+    iters = 0
+    for i in range(1, n_normal + 1):
+        sol, pev = solve_increment(run, control(run, P_frac=i / n_normal))
+        commit(run, sol, pev)
+        iters += sol.iterations
+        if bar is not None:
+            bar.update()
+    return sol, pev, iters
 
 
 def sliding_wear_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
@@ -162,7 +193,7 @@ def sliding_wear_path(run: Run, progress: bool = False) -> Iterator[OutputState]
             cw = 0.0 if k == 0 else ca + cb
             sol, pev = solve_increment(run, control(run), cw=cw)
             if k > 0:
-                add_wear(run, sol, pev, ca, cb)
+                add_wear(run, ca * sol.ev.pn, cb * sol.ev.pn)
             commit(run, sol, pev)
             bar.update()
             if k in wanted:

@@ -59,14 +59,17 @@ def slide_direction(case: Case) -> np.ndarray:
     return np.array([math.cos(a), math.sin(a)])
 
 
-def wear_compliances(case: Case, slip: np.ndarray) -> tuple[float, float]:
-    """``‖Δg‖_i`` of bodies a and b for a slip increment Δg (Eq. 21)."""
+def wear_norms(case: Case, slip: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``‖Δg‖_i`` of bodies a and b (Eq. 21) for slip increments Δg (..., 2)."""
     beta = case.friction.beta
-    out = []
-    for body in (case.a, case.b):
-        I2 = axes_tensor(body.i1**2, body.i2**2, beta)
-        out.append(float(norm_with(I2, slip)))
-    return out[0], out[1]
+    return tuple(norm_with(axes_tensor(body.i1**2, body.i2**2, beta), slip)
+                 for body in (case.a, case.b))
+
+
+def wear_compliances(case: Case, slip: np.ndarray) -> tuple[float, float]:
+    """``‖Δg‖_i`` of bodies a and b for one slip increment Δg (2,) (Eq. 21)."""
+    ia, ib = wear_norms(case, slip)
+    return float(ia), float(ib)
 
 
 def expected_radius(case: Case, a_ref: float) -> float:
@@ -74,6 +77,12 @@ def expected_radius(case: Case, a_ref: float) -> float:
 
     Hertz for static cases; Argatov's worn-pin radius (docs/cases.md, case 4)
     a⁴ = a0⁴ + 4 i_w P s R / π at the end of a sliding-wear run.
+
+    Fretting: the worn depth is estimated by Archard's law with the Hertz pressure p0
+    and the largest slip a cycle can have, 4A (gross slip), over all cycles, with the
+    larger wear coefficient of each body: w = (i_a + i_b) p0 4A N.  Under a held load
+    the radius grows like the worn pin's (s = 4AN); under a held approach δ the flattened
+    sphere closes up to a² = R(δ + w), never beyond the rigid overlap a² = 2Rδ.
     """
     a = a_ref
     if case.kind == "sliding_wear" and case.sliding_wear is not None:
@@ -81,6 +90,16 @@ def expected_radius(case: Case, a_ref: float) -> float:
         ia, ib = wear_compliances(case, d)
         s = case.sliding_wear.distance
         a = (a_ref**4 + 4.0 * (ia + ib) * case.load.P * s * case.R / math.pi) ** 0.25
+    elif case.kind == "fretting" and case.fretting is not None:
+        fr = case.fretting
+        i_w = max(case.a.i1, case.a.i2) + max(case.b.i1, case.b.i2)
+        s = 4.0 * fr.amplitude * fr.cycles
+        if case.load.P is not None:
+            a = (a_ref**4 + 4.0 * i_w * case.load.P * s * case.R / math.pi) ** 0.25
+        else:
+            p0 = 2.0 * case.E_star * a_ref / (math.pi * case.R)
+            growth = 1.0 + i_w * p0 * s / case.load.approach
+            a = a_ref * math.sqrt(min(growth, 2.0))
     return a / a_ref
 
 
@@ -98,10 +117,8 @@ def choose_shape(case: Case) -> str:
         along_x = not case.load.Qy
     elif mode == "shift":
         along_x = not case.load.shift_y
-    if mode == "sliding" or case.kind == "sliding_wear":
+    if mode == "sliding" or case.kind in ("sliding_wear", "fretting"):
         along_x = abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
-    if case.kind == "fretting":
-        along_x = along_x or mode == "none"
     if aligned and along_x:
         return "half"
     return "full"
@@ -235,8 +252,6 @@ class FemModel:
             raise FemUnsupported(
                 f"fem.order = {fem.order}: fem_reference implements P2 (order 2) only"
             )
-        if case.kind == "fretting":
-            raise FemUnsupported("kind 'fretting' is not implemented by fem_reference yet")
         self.a_ref = reference_length(case)
         self.h = fem.h * self.a_ref  # element size in the contact zone [mm]
         self.a_max = expected_radius(case, self.a_ref)  # units of a_ref
@@ -303,7 +318,7 @@ class FemModel:
         mode = case.load.tangential_mode
         if mode == "sliding" or case.kind == "sliding_wear":
             return "sliding"
-        if mode in ("load", "shift") or not case.identical_materials:
+        if mode in ("load", "shift") or case.kind == "fretting" or not case.identical_materials:
             return "friction"
         return "frictionless"  # identical materials, no tangential load: p_t stays 0
 

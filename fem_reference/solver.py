@@ -61,6 +61,7 @@ def solve(case: Case, progress: bool = False, *, vtu: bool = True, log=None,
             out = step_output(run, state, t0=t0, vtu=vtu)
             steps.append(out.result)
             tables.update(out.tables)
+            tables.update(state.tables)
             if out.mesh is not None:
                 meshes.append((state.step, out.mesh))
             if on_output is not None:
