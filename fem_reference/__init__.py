@@ -9,6 +9,8 @@ Public API:
   :mod:`fem_reference.loading`, the fields in :mod:`fem_reference.output`);
 - :func:`write_vtu` ``(path, mesh)`` writes one of the ``RunResult.meta["vtu"]``
   ``(step, meshio.Mesh)`` meshes for ParaView; :func:`read_vtu` reads it back;
+- :func:`by_default` ``(case) -> str | None``: why a run that names no solvers leaves
+  the FEM out on this case (fretting), None when it includes it;
 - :func:`estimate` ``(case) -> cases.result.Cost``: peak memory and wall time of a run,
   before any meshing (:mod:`fem_reference.cost`);
 - :class:`FemUnsupported` (a ``CaseError``: the case needs a feature the model does not
@@ -47,6 +49,16 @@ def supports(case: Case) -> str | None:
     return None
 
 
+def by_default(case: Case) -> str | None:
+    """None when a run without ``--solver`` should include the FEM on ``case``, else why
+    it runs only on request: fretting, whose contact solves with wear take minutes per
+    quick sweep point (docs/fem-notes.md, part 5)."""
+    if case.kind == "fretting":
+        return ("fretting runs through the FEM only on request (--solver ic,fem,analytic): "
+                "2-15 min per quick sweep point (docs/fem-notes.md, part 5)")
+    return None
+
+
 def estimate(case: Case) -> Cost:
     """Peak memory [bytes] and wall time [s] the FEM reference expects ``case`` to take,
     with the case keys that drive each, before any meshing (:mod:`fem_reference.cost`)."""
@@ -56,7 +68,7 @@ def estimate(case: Case) -> Cost:
 
 
 __all__ = [
-    "supports", "estimate",
+    "supports", "by_default", "estimate",
     "solve", "write_vtu", "read_vtu", "FemError", "FemUnsupported", "MeshError",
     "ContactConvergenceError",
 ]

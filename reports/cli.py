@@ -217,7 +217,8 @@ def cmd_run(args: argparse.Namespace) -> int:
     overrides = _overrides(args.overrides)
     limits = _limits(args)
     plans = [plan_case(n, chosen, quick=args.quick, overrides=overrides, skipped=skipped,
-                       limits=limits) for n in names]  # validate every case before running
+                       limits=limits, explicit=bool(_solver_list(args.solver)))
+             for n in names]  # validate every case before running
     if args.convergence:
         from .gridstudy import add_grids
 
@@ -245,7 +246,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     chosen, skipped = select_solvers(_solver_list(args.solver))
     plan = plan_sweep(args.case, params, chosen, quick=args.quick,
                       overrides=_overrides(args.overrides), skipped=skipped,
-                      limits=_limits(args))
+                      limits=_limits(args), explicit=bool(_solver_list(args.solver)))
     progress = False if args.no_progress else None
     t0 = time.perf_counter()
     if args.workers == 0 and not args.scheduler:

@@ -132,10 +132,13 @@ def select_solvers(requested: list[str] | None) -> tuple[list[str], dict[str, st
 def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
               overrides: dict[str, Any] | None = None, skipped: dict[str, str] | None = None,
               points: list[Case] | None = None, sweep: dict[str, Any] | None = None,
-              dir_name: str | None = None, limits: Limits | None = None) -> CasePlan:
+              dir_name: str | None = None, limits: Limits | None = None,
+              explicit: bool = True) -> CasePlan:
     """Load and validate a case (``CaseError`` on bad input, or a unit beyond the
     ``limits``) and plan its runs (the grid studies of ``run --convergence`` are added by
-    :func:`reports.gridstudy.add_grids`)."""
+    :func:`reports.gridstudy.add_grids`).  ``explicit``: the solvers were named by the
+    user; otherwise a solver that runs on a case only on request
+    (:func:`reports.solvers.not_by_default`) is left out with its reason."""
     source = case_path(ref)
     if points is None:
         points = load_case(source, quick=quick, overrides=overrides)
@@ -150,6 +153,12 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
         reasons = [solvers.unsupported(s, c) for c in points]
         if all(r is not None for r in reasons):
             plan.skipped[s] = reasons[0]
+    if not explicit:
+        for s in [s for s in plan.solvers if s not in plan.skipped]:
+            reason = next((r for c in points if (r := solvers.not_by_default(s, c))), None)
+            if reason is not None:
+                plan.skipped[s] = reason
+                plan.solvers.remove(s)
     limits = limits or Limits()
     for i, s in plan.units():
         limits.check(points[i], s)

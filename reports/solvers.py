@@ -224,6 +224,9 @@ class SolverRecord:
     solve_attr: str = "solve"
     supports_attr: str = "supports"
     estimate_attr: str = "estimate"  # optional: Cost of a case before any work
+    #: optional: why a run that names no solvers leaves this one out on a case (None: it
+    #: runs); the solver still runs when requested with --solver
+    default_attr: str = "by_default"
 
     def entry(self, attr: str) -> Callable:
         """The callable ``attr`` of the package; SolverUnavailable if it cannot load."""
@@ -291,6 +294,18 @@ def estimate(name: str, case: Case) -> Cost | None:
     except SolverUnavailable:
         return None
     return fn(case)
+
+
+def not_by_default(name: str, case: Case) -> str | None:
+    """Why a run that names no solvers leaves solver ``name`` out on ``case`` (its
+    optional ``by_default``), None if it runs."""
+    rec = REGISTRY[name]
+    try:
+        fn = rec.entry(rec.default_attr)
+    except SolverUnavailable:
+        return None
+    reason = fn(case)
+    return None if reason is None else str(reason)
 
 
 def unsupported(name: str, case: Case) -> str | None:

@@ -135,12 +135,12 @@ def sweep_dir_name(case: str, params: list[tuple[str, list[Any]]]) -> str:
 
 def plan_sweep(ref: str | Path, params: list[tuple[str, list[Any]]], solver_names: list[str],
                *, quick: bool = False, overrides: dict[str, Any] | None = None,
-               skipped: dict[str, str] | None = None, limits: Limits | None = None
-               ) -> CasePlan:
+               skipped: dict[str, str] | None = None, limits: Limits | None = None,
+               explicit: bool = True) -> CasePlan:
     cases, sweep = sweep_points(ref, params, quick=quick, overrides=overrides)
     return plan_case(ref, solver_names, quick=quick, overrides=overrides, skipped=skipped,
                      points=cases, sweep=sweep, dir_name=sweep_dir_name(cases[0].name, params),
-                     limits=limits)
+                     limits=limits, explicit=explicit)
 
 
 def _thread_env() -> dict[str, str | None]:

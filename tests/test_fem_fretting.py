@@ -86,3 +86,18 @@ def test_expected_radius_and_model_of_a_fretting_case():
         1.0, abs=1e-5)
     assert choose_shape(worn) == "half"
     assert choose_shape(worn.with_changes(load=replace(worn.load, slide_angle=30.0))) == "full"
+
+
+def test_fretting_runs_through_the_fem_on_request_only():
+    """A run that names no solvers leaves the FEM out of fretting cases and says why; a
+    run that names it includes it (static cases include it either way)."""
+    from reports.plan import plan_case
+
+    every = ["ic", "fem", "analytic"]
+    plan = plan_case("fretting_isotropic", every, quick=True, explicit=False)
+    assert "fem" not in {s for _, s in plan.units()}
+    assert "--solver" in plan.skipped["fem"]
+    asked = plan_case("fretting_isotropic", every, quick=True, explicit=True)
+    assert "fem" in {s for _, s in asked.units()}
+    static = plan_case("hertz", every, quick=True, explicit=False)
+    assert "fem" in {s for _, s in static.units()}

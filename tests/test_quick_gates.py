@@ -14,8 +14,8 @@ the baselines explicitly with
     contact-vv gate --out results --update-baseline tests/baselines
 
 Not here: the FEM on pin_on_disk_orthotropic (its quick run alone takes 7 min; it passes
-the gate in ``contact-vv run --all --quick``, the issue notes have its numbers).  FEM
-fretting is not modelled.
+the gate in ``contact-vv run --all --quick``, the issue notes have its numbers).  The
+FEM runs fretting only on request (tests/test_fem_fretting.py checks its first cycle).
 """
 
 from __future__ import annotations
