@@ -22,7 +22,8 @@ the real cycle count at its end, the energy ∮ Q·d dδ by the trapezoidal rule
 steps, the least stick area, gross slip 1 / partial 0 / NaN without contact at an
 extreme ±A, w_max, the stick areas at −A and +A, the least P and contact area).
 Output steps: ``step = n`` for the simulated cycle n that ends at an output cycle
-(``round(c / J)``), and the last.
+(``round(c / J)``), and the last.  Regime events (:class:`Events`): gross ↔ partial
+slip, and under a held approach the load lost and the contact worn through.
 """
 
 from __future__ import annotations
@@ -33,12 +34,16 @@ from dataclasses import replace
 
 import numpy as np
 
-from cases.result import STICK
+from cases.result import STICK, RunEvent
 
 from .contact import Control, Evaluation, Solution
 from .loading import _bar, add_wear, commit, normal_increments, normal_loading, solve_increment
 from .model import slide_direction, wear_norms
 from .run import OutputState, Run
+
+#: "load lost": under a held approach the least P of a cycle below this fraction of the
+#: load after the initial loading (the same definition as the half-space solver's)
+LOAD_LOST = 0.01
 
 CYCLE_COLUMNS = ("cycle", "energy", "min_stick_area", "gross_slip", "w_max",
                  "stick_area_neg", "stick_area_pos", "P_min", "contact_area_min")
@@ -122,7 +127,10 @@ def fretting_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
         for u in loading:
             sol, pev, _ = fretting_step(run, float(u), 0.0)
             bar.update()
-        Q_prev = np.array(resultants(run, sol.ev)[1:3])
+        P0, _, _, contact0, stick0 = resultants(run, sol.ev)
+        watch = Events(fr.jump, fr.cycles, P0, _regime(stick0, contact0),
+                       held_approach=case.load.P is None)
+        Q_prev = tangential_load(run, sol.ev.t)
         for n in range(1, n_sim + 1):
             energy, u_prev = 0.0, fr.amplitude
             stick_ext, contact_ext = [], []
@@ -142,13 +150,55 @@ def fretting_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
                 loops.append((n * J, u, Qx, Qy))
                 bar.update()
             w_max = float((run.nodes.wear_a + run.nodes.wear_b).max())
-            cycles.append((n * J, abs(energy), min_stick, _gross(stick_ext, contact_ext),
+            gross = _gross(stick_ext, contact_ext)
+            cycles.append((n * J, abs(energy), min_stick, gross,
                            w_max, stick_ext[0], stick_ext[-1], P_min, contact_min))
+            watch.observe(n, gross, min(stick_ext), P_min, contact_min)
             if n in out_sim:
                 yield OutputState(step=n, sol=sol, probe_ev=pev, slip=slip, iterations=iters,
                                   cycle=float(out_sim[n]),
-                                  tables=_tables(loops, cycles))
+                                  tables=_tables(loops, cycles), events=list(watch.events))
                 iters = 0
+
+
+def _regime(stick: float, contact: float) -> float:
+    """1 gross slip (no node sticks), 0 partial slip, NaN without contact."""
+    return math.nan if contact <= 0.0 else float(stick <= 0.0)
+
+
+class Events:
+    """The regime events of a fretting run, one simulated cycle n at a time, recorded at
+    the real cycle min(nJ, cycles) with resolution J (docs: reports/README.md, events):
+    ``gross_to_partial_slip`` / ``partial_to_gross_slip`` when the regime at the
+    tangential extremes changes (the first cycle against the initial loading), and
+    under a held approach ``load_lost`` (the least P of a cycle below :data:`LOAD_LOST`
+    of P0, the load after the initial loading) and ``contact_worn_through`` (a step
+    without a node in contact), each once."""
+
+    def __init__(self, jump: float, total: float, P0: float, regime: float,
+                 held_approach: bool):
+        self.jump, self.total, self.P0, self.held = jump, total, P0, held_approach
+        self.regime, self.stick = regime, math.nan
+        self.events: list[RunEvent] = []
+
+    def observe(self, n: int, gross: float, stick: float, P_min: float,
+                contact_min: float) -> None:
+        at, before = min(n * self.jump, self.total), min((n - 1) * self.jump, self.total)
+        names = {e.event for e in self.events}
+        if not math.isnan(gross):
+            if not math.isnan(self.regime) and gross != self.regime:
+                old, new = ("gross", "partial") if self.regime else ("partial", "gross")
+                self.events.append(RunEvent(
+                    f"{old}_to_{new}_slip", at, at - before,
+                    f"least stick area at the extremes ±A {stick:.4g} mm² at cycle {at:g}"))
+            self.regime = gross
+        if self.held and "load_lost" not in names and P_min < LOAD_LOST * self.P0:
+            self.events.append(RunEvent(
+                "load_lost", at, at - before,
+                f"P = {P_min:.4g} N < {LOAD_LOST:.0%} of P0 = {self.P0:.4g} N"))
+        if self.held and "contact_worn_through" not in names and contact_min <= 0.0:
+            self.events.append(RunEvent("contact_worn_through", at, at - before,
+                                        "no node in contact, P = 0"))
 
 
 def _gross(stick: list[float], contact: list[float]) -> float:

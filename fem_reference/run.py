@@ -57,6 +57,7 @@ class OutputState:
     s: float = float("nan")
     cycle: float = float("nan")
     tables: dict = field(default_factory=dict)  # run tables so far (fretting loops, cycles)
+    events: list | None = None  # regime events so far (fretting), None: not watched
 
 
 def start_run(model: FemModel) -> Run:

@@ -54,6 +54,7 @@ def solve(case: Case, progress: bool = False, *, vtu: bool = True, log=None,
     model = FemModel(case, log=log)
     steps: list[StepResult] = []
     tables: dict = {}
+    events = None
     meshes: list[tuple[int, meshio.Mesh]] = []
     try:
         run = start_run(model)
@@ -62,6 +63,7 @@ def solve(case: Case, progress: bool = False, *, vtu: bool = True, log=None,
             steps.append(out.result)
             tables.update(out.tables)
             tables.update(state.tables)
+            events = state.events if state.events is not None else events
             if out.mesh is not None:
                 meshes.append((state.step, out.mesh))
             if on_output is not None:
@@ -69,7 +71,7 @@ def solve(case: Case, progress: bool = False, *, vtu: bool = True, log=None,
     finally:
         model.free_memory()
     return RunResult(case=case.name, solver="fem", param=case.param, steps=steps,
-                     meta=_meta(model, t0, meshes), tables=tables)
+                     meta=_meta(model, t0, meshes), tables=tables, events=events)
 
 
 def _meta(model: FemModel, t0: float, meshes: list[tuple[int, meshio.Mesh]]) -> dict:
