@@ -37,7 +37,14 @@ import numpy as np
 from cases.result import STICK, RunEvent
 
 from .contact import Control, Evaluation, Solution
-from .loading import _bar, add_wear, commit, normal_increments, normal_loading, solve_increment
+from .loading import (
+    add_wear,
+    commit,
+    normal_increments,
+    normal_loading,
+    progress_bar,
+    solve_increment,
+)
 from .model import slide_direction, wear_norms
 from .run import OutputState, Run
 
@@ -121,7 +128,7 @@ def fretting_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
     loading, path = fr.loading_path(), fr.cycle_path()
     loops: list[tuple] = []
     cycles: list[tuple] = []
-    with _bar(progress, normal_increments(case) + loading.size + n_sim * path.size,
+    with progress_bar(progress, normal_increments(case) + loading.size + n_sim * path.size,
               case) as bar:
         sol, pev, iters = normal_loading(run, bar)
         for u in loading:

@@ -1,5 +1,6 @@
-"""The load path of a run: static load steps and sliding-wear steps (fretting:
-:mod:`fem_reference.fretting`).
+"""The load paths of static and sliding-wear runs and the solve steps they share with
+fretting (:mod:`fem_reference.fretting`); :func:`fem_reference.solver.load_path` picks
+the path of a case.
 
 - static cases: the normal load (or approach) first — in one step for identical
   materials (no normal–tangential coupling), in 5 increments otherwise — then a
@@ -26,25 +27,11 @@ from cases.model import Case, CaseError, SlidingWear
 from cases.result import OPEN, SLIP, STICK
 
 from .contact import Control, Evaluation, Solution, augmented, evaluate
-from .model import FemError, FemUnsupported, slide_direction, wear_compliances
+from .model import FemError, slide_direction, wear_compliances
 from .run import OutputState, Run, hertz_start
 
 N_NORMAL_DISSIMILAR = 5  # normal load increments of dissimilar materials
 N_TANGENTIAL = 5  # tangential load (or shift) increments
-
-
-def load_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
-    """The output states of the case's load path (static or sliding wear)."""
-    kind = run.model.case.kind
-    if kind == "static":
-        return static_path(run, progress)
-    if kind == "sliding_wear":
-        return sliding_wear_path(run, progress)
-    if kind == "fretting":
-        from .fretting import fretting_path
-
-        return fretting_path(run, progress)
-    raise FemUnsupported(f"kind {kind!r} is not supported by fem_reference")
 
 
 def control(run: Run, P_frac: float = 1.0, Q_frac: float = 0.0) -> Control:
@@ -145,7 +132,7 @@ def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
         yield OutputState(step=0, sol=sol, probe_ev=pev, slip=slip, iterations=iters)
         return
     n_tangential = N_TANGENTIAL if mode in ("load", "shift") else 0
-    with _bar(progress, normal_increments(case) + n_tangential, case) as bar:
+    with progress_bar(progress, normal_increments(case) + n_tangential, case) as bar:
         sol, pev, iters = normal_loading(run, bar)
         gt_ref = pev.gt.copy()
         for i in range(1, n_tangential + 1):
@@ -188,7 +175,7 @@ def sliding_wear_path(run: Run, progress: bool = False) -> Iterator[OutputState]
     dg = sw.step * slide_direction(case)
     ca, cb = wear_compliances(case, dg)
     wanted = output_steps(sw, n)
-    with _bar(progress, n + 1, case) as bar:
+    with progress_bar(progress, n + 1, case) as bar:
         for k in range(n + 1):
             cw = 0.0 if k == 0 else ca + cb
             sol, pev = solve_increment(run, control(run), cw=cw)
@@ -235,7 +222,7 @@ class _NoBar:
         pass
 
 
-def _bar(progress: bool, total: int, case: Case):
+def progress_bar(progress: bool, total: int, case: Case):
     """A tqdm progress bar of ``total`` steps (a context manager), or a silent stand-in."""
     if not progress:
         return _NoBar()

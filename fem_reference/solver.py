@@ -5,9 +5,11 @@ The run is assembled from one module per job:
 - :mod:`fem_reference.model`: the FE model of the case (mesh, symmetry, condensation);
 - :mod:`fem_reference.run`: the set-up of a run (contact points, probes, recovery) and
   its state, started from the Hertz solution;
-- :mod:`fem_reference.loading`: the load path — static load steps (normal, then
-  tangential loading; one output step ``step = 0``) and sliding-wear steps (output
-  steps ``round(s / sliding_wear.step)``);
+- :mod:`fem_reference.loading`: the load paths of static cases (normal, then
+  tangential loading; one output step ``step = 0``) and sliding wear (output steps
+  ``round(s / sliding_wear.step)``); :mod:`fem_reference.fretting`: fretting (output
+  steps per output cycle, ``loops`` and ``cycles`` tables, regime events);
+  :func:`load_path` picks the case's;
 - :mod:`fem_reference.output`: the output of one step — surface fields on the case grid
   (the nodal tractions of :mod:`fem_reference.nodal`, interpolated; the contact
   region, :mod:`fem_reference.contact_zone`), the scalars, the stress planes and the
@@ -24,7 +26,7 @@ FE fields of the reported body (write them with :func:`fem_reference.vtu.write_v
 from __future__ import annotations
 
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import asdict
 
 import meshio
@@ -32,10 +34,21 @@ import meshio
 from cases.model import Case
 from cases.result import RunResult, StepResult
 
-from .loading import load_path
-from .model import FemModel
+from .fretting import fretting_path
+from .loading import sliding_wear_path, static_path
+from .model import FemModel, FemUnsupported
 from .output import step_output
-from .run import start_run
+from .run import OutputState, Run, start_run
+
+
+def load_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
+    """The output states of the case's load path: static, sliding wear or fretting."""
+    kind = run.model.case.kind
+    paths = {"static": static_path, "sliding_wear": sliding_wear_path,
+             "fretting": fretting_path}
+    if kind not in paths:
+        raise FemUnsupported(f"kind {kind!r} is not supported by fem_reference")
+    return paths[kind](run, progress)
 
 
 def solve(case: Case, progress: bool = False, *, vtu: bool = True, log=None,
