@@ -320,7 +320,8 @@ def cmd_threshold(args: argparse.Namespace) -> int:
     request = th.Request(case=args.case, param=args.param, event=args.event, lo=lo, hi=hi,
                          resolution=res, grids=th.parse_grids(args.grids),
                          solvers=tuple(chosen), quick=args.quick, overrides=overrides,
-                         options=options, limits=_limits(args))
+                         options=options, limits=_limits(args),
+                         explicit=bool(_solver_list(args.solver)))
     th.existing(args.out)  # a damaged table is refused before any work
     t0 = time.perf_counter()
     rows = th.run(request, log=None if args.no_progress else th.stderr_log)

@@ -73,6 +73,7 @@ class Request:
     overrides: dict[str, Any] = field(default_factory=dict)
     options: EventOptions = EventOptions()
     limits: Limits | None = None
+    explicit: bool = True  # the solvers were named (--solver): optional ones run too
 
 
 def check_param(param: str) -> None:
@@ -204,6 +205,9 @@ def _ends(unit: Unit) -> tuple[bool, bool] | dict[str, Any]:
         reason = solvers.unsupported(unit.solver, unit.case(value))
         if reason is not None:
             return unit.row(status=f"unsupported: {reason}")
+        reason = None if r.explicit else solvers.not_by_default(unit.solver, unit.case(value))
+        if reason is not None:
+            return unit.row(status=f"not by default: {reason}")
     try:
         return unit(r.lo), unit(r.hi)
     except EventUndefined as exc:
