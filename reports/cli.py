@@ -92,6 +92,10 @@ def build_parser() -> argparse.ArgumentParser:
                      help="grid studies: also run every numerical solver on two grids "
                      "coarser by 1.5 and 1.5² and write DIR/<case>/convergence.csv "
                      "(observed order, Richardson extrapolation, GCI)")
+    run.add_argument("--jump-study", action="store_true",
+                     help="cycle-jump studies of fretting cases: also run every numerical "
+                     "solver at half and a quarter of fretting.jump and write "
+                     "DIR/<case>/jump_study.csv (change when J is halved, order, GCI)")
     common(run, solving=True)
 
     report = sub.add_parser("report", help="write DIR/index.html from the results in DIR")
@@ -223,6 +227,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         from .gridstudy import add_grids
 
         plans = [add_grids(p, limits) for p in plans]
+    if args.jump_study:
+        plans = _add_jumps(plans, limits)
     seen: dict[str, str] = {}
     for n, p in zip(names, plans, strict=True):
         if p.dir_name in seen:
@@ -299,6 +305,23 @@ def _check_serial(plan, path: Path, wall: float) -> int:
           f"(speed-up {serial / wall:.2f}x); numbers "
           + ("identical" if same else "DIFFER"))
     return 0 if same else 1
+
+
+def _add_jumps(plans: list[Any], limits: Any) -> list[Any]:
+    """The plans with their cycle-jump studies; UserError if none has one."""
+    from .jumpstudy import add_jumps, not_studied
+
+    plans = [add_jumps(p, limits) for p in plans]
+    if not any(p.jumps for p in plans):
+        why = sorted({f"{p.points[i].name}: {not_studied(s, p.points[i])}"
+                      for p in plans for i, s in p.units()})
+        raise UserError("--jump-study: no run has a cycle jump to halve (" + "; ".join(why)
+                        + ")")
+    for p in plans:
+        if not p.jumps and any(c.kind == "fretting" for c in p.points):
+            print(f"{PROG}: note: --jump-study: {p.name}: no cycle jump to halve "
+                  f"(fretting.jump = {p.points[0].fretting.jump:g})", file=sys.stderr)
+    return plans
 
 
 def cmd_threshold(args: argparse.Namespace) -> int:

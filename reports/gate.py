@@ -16,6 +16,7 @@ import pandas as pd
 
 from .errors import RunFailed, UserError
 from .gridstudy import note_lines
+from .jumpstudy import note_lines_jump
 from .layout import METRICS
 from .readers import gated, ungated
 from .results import CaseResults, Scan, not_converged, scan
@@ -150,7 +151,8 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
         if stale_case_file(case.manifest):
             print(f"note: {case.name}: the case file {case.manifest.get('case_file')} changed "
                   "since the run (re-run to check the current version)", file=stream)
-        for line in note_lines(case.name, case.convergence) + ungated_lines(case):
+        for line in (note_lines(case.name, case.convergence)
+                     + note_lines_jump(case.name, case.jump_study) + ungated_lines(case)):
             print(line, file=stream)  # information, not failures
     on = gated(table)
     n_ok = int((table["passed"].astype(str).str.lower().isin(["true", "1"]) & on).sum())

@@ -75,6 +75,21 @@ SETTLED = (convergence.CONVERGED, convergence.EXACT)
 
 
 @dataclass(frozen=True)
+class Kind:
+    """How the rows of a study are named: the label of its notes (``grid``), the symbol
+    and unit of its sizes, and the column holding the cell size a ``cells`` budget is
+    measured in (:func:`spread`)."""
+
+    label: str = "grid"
+    symbol: str = "h"
+    unit: str = " mm"
+    cell: str = "h1"
+
+
+GRID = Kind()
+
+
+@dataclass(frozen=True)
 class GridRun:
     """One coarse run of a grid study: sweep point ``point``, ``solver``, ``level`` 2 or 3
     (1 is the run's own grid), on ``case``."""
@@ -180,19 +195,30 @@ def run(plan: CasePlan, executor: Executor, progress: bool | None,
     """Run the coarse grids of ``plan`` through ``executor`` (fields not written) and
     build the convergence table against ``fine_rows`` ((point, solver) -> summary rows of
     the run's own grid)."""
-    grids = list(plan.grids)
-    sub = dataclasses.replace(plan, points=[g.case for g in grids], staging=None,
-                              grids=[])
-    units = [(k, g.solver) for k, g in enumerate(grids)]
+    study = run_levels(plan, plan.grids, executor, progress, "grids", lambda g: {
+        "grid": g.level, "cell_size": solvers.record(g.solver).cell_size(g.case)})
+    study.table = table(plan, fine_rows, study)
+    return study
+
+
+def run_levels(plan: CasePlan, runs: list[Any], executor: Executor, progress: bool | None,
+               label: str, describe: Callable[[Any], dict[str, Any]]) -> Study:
+    """Run the extra levels ``runs`` of a study (items with ``point, solver, level,
+    case``) through ``executor`` without fields: their summary rows (or why there are
+    none) keyed (point, solver, level), and their manifest records, with ``describe``'s
+    keys, in the planned order."""
+    sub = dataclasses.replace(plan, points=[g.case for g in runs], staging=None,
+                              grids=[], jumps=[])
+    units = [(k, g.solver) for k, g in enumerate(runs)]
     study = Study()
     order = {s: k for k, s in enumerate(plan.solvers)}
     keyed: list[tuple[tuple[int, int, int], dict[str, Any]]] = []
-    bar = tqdm(total=len(units), desc=f"{plan.dir_name} grids", unit="run", leave=False,
+    bar = tqdm(total=len(units), desc=f"{plan.dir_name} {label}", unit="run", leave=False,
                disable=None if progress is None else not progress)
     try:
         for outcome in executor(sub, units, bool(progress)):
             bar.update(1)
-            g = grids[outcome.index]
+            g = runs[outcome.index]
             key = (g.point, g.solver, g.level)
             if outcome.result is not None:  # keep the scalars only, not the fields
                 study.rows[key] = outcome.result.summary_rows()
@@ -201,14 +227,12 @@ def run(plan: CasePlan, executor: Executor, progress: bool | None,
             keyed.append(((g.point, order.get(g.solver, len(order)), g.level), {
                 "solver": outcome.solver, "param": outcome.param, "wall_s": outcome.wall_s,
                 "ok": outcome.result is not None, "error": outcome.error,
-                "kind": outcome.kind, "grid": g.level,
-                "cell_size": solvers.record(g.solver).cell_size(g.case),
+                "kind": outcome.kind, **describe(g),
                 "changes": jsonable(changes(plan.points[g.point], g.case)),
                 "meta": jsonable(outcome.result.meta) if outcome.result else {}}))
     finally:
         bar.close()
     study.records = [r for _, r in sorted(keyed, key=lambda kr: kr[0])]  # as planned
-    study.table = table(plan, fine_rows, study)
     return study
 
 
@@ -216,7 +240,8 @@ def _by_step(rows: list[dict[str, Any]]) -> dict[int, dict[str, Any]]:
     return {int(r["step"]): r for r in rows}
 
 
-def _value(row: dict[str, Any] | None, q: str) -> float:
+def value_of(row: dict[str, Any] | None, q: str) -> float:
+    """Quantity ``q`` of a summary row as a float (NaN: no row, no value)."""
     if row is None:
         return math.nan
     v = row.get(q)
@@ -246,17 +271,20 @@ def table(plan: CasePlan, fine_rows: dict[tuple[int, str], list[dict[str, Any]]]
                 failed.append(f"grid {level} failed ({study.errors.get(key, 'not run')})")
         for step in sorted(fine):
             for q in GATED:
-                f = (_value(fine[step], q), _value(coarse[0].get(step), q),
-                     _value(coarse[1].get(step), q))
+                f = (value_of(fine[step], q), value_of(coarse[0].get(step), q),
+                     value_of(coarse[1].get(step), q))
                 if q not in fine[step] or all(math.isnan(v) for v in f):
                     continue  # the solver does not report it
-                rows.append(_row(s, case.param, step, q, tuple(h), f, failed))
+                rows.append(study_row(s, case.param, step, q, tuple(h), f, failed))
     frame = pd.DataFrame.from_records(rows, columns=COLUMNS)
     return frame.astype({"step": "int64"}) if not frame.empty else frame
 
 
-def _row(solver: str, param: str, step: int, q: str, h: tuple[float, float, float],
-         f: tuple[float, float, float], failed: list[str]) -> dict[str, Any]:
+def study_row(solver: str, param: str, step: int, q: str, h: tuple[float, float, float],
+              f: tuple[float, float, float], failed: list[str]) -> dict[str, Any]:
+    """One row of a three-level study (values ``f`` on sizes ``h``, finest first):
+    order, extrapolation, GCIs and status (:func:`reports.convergence.classify`);
+    ``failed`` names levels that did not run."""
     st = convergence.study(f, h)
     status, note = convergence.classify(st)
     if failed:
@@ -284,8 +312,9 @@ def unsettled(frame: pd.DataFrame) -> pd.DataFrame:
     return frame[~frame["status"].isin(SETTLED)]
 
 
-def flag_summary(summary: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
-    """``summary`` with the last column :data:`FLAG_COLUMN`: the space-separated gated
+def flag_summary(summary: pd.DataFrame, frame: pd.DataFrame,
+                 column: str = FLAG_COLUMN) -> pd.DataFrame:
+    """``summary`` with the last column ``column``: the space-separated studied
     quantities of each (solver, param, step) that are not converged ('' if none)."""
     bad: dict[tuple[str, str, int], list[str]] = {}
     for r in unsettled(frame).itertuples(index=False):
@@ -293,14 +322,14 @@ def flag_summary(summary: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
     param = summary["param"].fillna("").astype(str)
     flags = [" ".join(bad.get((str(s), p, int(k)), []))
              for s, p, k in zip(summary["solver"], param, summary["step"], strict=True)]
-    return summary.assign(**{FLAG_COLUMN: flags})
+    return summary.assign(**{column: flags})
 
 
-def spread(row: Any, metric: str) -> float:
+def spread(row: Any, metric: str, cell: float | None = None) -> float:
     """How far apart the three values of a study row are, in the units of ``metric``:
     (max − min) / |f1| for ``rel``; for ``cells`` the spread of the length (a semi-width,
-    or the equivalent radius √(A/π) of an area) over the finest cell size h1.  NaN when
-    a value is missing."""
+    or the equivalent radius √(A/π) of an area) over the cell size ``cell`` (default the
+    finest cell size h1 of a grid study).  NaN when a value is missing."""
     f = np.array([row.f1, row.f2, row.f3], dtype=float)
     if not np.isfinite(f).all():
         return math.nan
@@ -308,10 +337,11 @@ def spread(row: Any, metric: str) -> float:
         return float((f.max() - f.min()) / abs(f[0])) if f[0] != 0 else math.inf
     if row.quantity in ("contact_area", "stick_area"):
         f = np.sqrt(np.clip(f, 0.0, None) / math.pi)
-    return float((f.max() - f.min()) / row.h1)
+    return float((f.max() - f.min()) / (row.h1 if cell is None else cell))
 
 
-def flag_metrics(metrics: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
+def flag_metrics(metrics: pd.DataFrame, frame: pd.DataFrame,
+                 kind: Kind = GRID) -> pd.DataFrame:
     """``metrics`` with the rows of a studied quantity that is not converged set to
     ``status`` "not converged", the ``note`` naming the solver, status and three values:
     a number that the grids do not settle is shown, not gated (:mod:`reports.tolerances`).
@@ -335,13 +365,14 @@ def flag_metrics(metrics: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
             r = bad.get((solver, param.iat[k], int(out["step"].iat[k]), q))
             if r is None:
                 continue
-            width, limit = spread(r, metric), budget(solver, q, metric)
+            width = spread(r, metric, float(getattr(r, kind.cell)))
+            limit = budget(solver, q, metric)
             order = f"order {r.order:.3g}" if math.isfinite(r.order) else "no order"
             versus = "unknown" if math.isnan(width) else \
                 f"{width:.3g} {'>' if width > limit else '<='} budget {limit:g}"
-            text = (f"grid study: {solver} {r.status}, f = {r.f1:.6g}, {r.f2:.6g}, "
-                    f"{r.f3:.6g} on h = {r.h1:.4g}, {r.h2:.4g}, {r.h3:.4g} mm, {order}, "
-                    f"spread {versus}")
+            text = (f"{kind.label} study: {solver} {r.status}, f = {r.f1:.6g}, {r.f2:.6g}, "
+                    f"{r.f3:.6g} on {kind.symbol} = {r.h1:.4g}, {r.h2:.4g}, "
+                    f"{r.h3:.4g}{kind.unit}, {order}, spread {versus}")
             (dropped if width > limit else kept).append(text)
         if not (dropped or kept):
             continue
@@ -357,11 +388,17 @@ def read_convergence(path: Path) -> pd.DataFrame:
     """``convergence.csv`` as a run writes it (a parser for
     :func:`reports.readers.read_result`): the required columns, numbers where a run
     writes numbers, a known ``status``; ``Malformed`` otherwise."""
+    return read_study(path, COLUMNS, COLUMNS[:14])
+
+
+def read_study(path: Path, columns: list[str], required: list[str]) -> pd.DataFrame:
+    """A study table with ``columns`` (``required`` among them): text and numbers as a
+    run writes them, a known ``status``; ``Malformed`` otherwise."""
     from .readers import Malformed, read_csv
 
     text = ("solver", "param", "quantity", "status", "note")
-    frame = read_csv(path, required=COLUMNS[:14], text=text,
-                     numeric=[c for c in COLUMNS if c not in (*text, "step")],
+    frame = read_csv(path, required=required, text=text,
+                     numeric=[c for c in columns if c not in (*text, "step")],
                      integer=["step"])
     bad = ~frame["status"].isin(convergence.STATUSES)
     if bad.any():
@@ -371,10 +408,10 @@ def read_convergence(path: Path) -> pd.DataFrame:
     return frame
 
 
-def note_lines(case: str, frame: pd.DataFrame) -> list[str]:
+def note_lines(case: str, frame: pd.DataFrame, kind: Kind = GRID) -> list[str]:
     """One ``NOT CONVERGED (grid) <case> [param] step N <solver> <quantity>: …`` line per
-    quantity of a convergence table that is neither converged nor exact, with its three
-    values (finest first), cell sizes and observed order: information for the gate, not a
+    quantity of a study table that is neither converged nor exact, with its three
+    values (finest first), sizes and observed order: information for the gate, not a
     failure (the quantity's metric rows are not gated, :func:`flag_metrics`)."""
     lines = []
     for r in unsettled(frame).itertuples(index=False):
@@ -382,7 +419,7 @@ def note_lines(case: str, frame: pd.DataFrame) -> list[str]:
         where = case + (f" [{param}]" if param else "") + f" step {int(r.step)}"
         order = f"order {r.order:.3g}" if math.isfinite(r.order) else "no order"
         lines.append(
-            f"NOT CONVERGED (grid) {where} {r.solver} {r.quantity}: {r.status}; "
-            f"f = {r.f1:.6g}, {r.f2:.6g}, {r.f3:.6g} on h = {r.h1:.4g}, {r.h2:.4g}, "
-            f"{r.h3:.4g} mm; {order}" + (f" ({r.note})" if r.note else ""))
+            f"NOT CONVERGED ({kind.label}) {where} {r.solver} {r.quantity}: {r.status}; "
+            f"f = {r.f1:.6g}, {r.f2:.6g}, {r.f3:.6g} on {kind.symbol} = {r.h1:.4g}, "
+            f"{r.h2:.4g}, {r.h3:.4g}{kind.unit}; {order}" + (f" ({r.note})" if r.note else ""))
     return lines

@@ -21,7 +21,7 @@ from .gate import metrics_table, problems
 from .readers import gated, ungated
 from .results import CaseResults, Scan, not_converged, scan
 from .run_events import EVENTS_NOTE, events_view
-from .studies import convergence_frame, scales, study_frame
+from .studies import convergence_frame, jump_frame, scales, study_frame
 from .tolerances import GATED
 
 CSS = """
@@ -109,6 +109,7 @@ def case_section(case: CaseResults) -> str:
         parts.append('<h3>Sweep</h3><div class="sweep">' + _fig(sweep, "sweep") + "</div>")
     parts += _metrics(case)
     parts += _convergence(case)
+    parts += _jump_study(case)
     parts += _sweep_check(case)
     parts.append(provenance_html(mf))
     parts.append("</section>")
@@ -289,6 +290,38 @@ def _convergence(case: CaseResults) -> list[str]:
     return parts
 
 
+def _jump_study(case: CaseResults) -> list[str]:
+    """The cycle-jump studies of a fretting run (``run --jump-study``), or how to make
+    one; nothing for other kinds."""
+    if case.manifest.get("kind") != "fretting":
+        return []
+    name = case.name
+    parts = [f'<h3 id="jump-{_e(name)}">Cycle-jump convergence</h3><div class="convergence">']
+    study = jump_frame(case)
+    if study.empty:
+        ref = _e(case.manifest.get("case", name))
+        parts.append("<p>No cycle-jump study in these results. Run <code>contact-vv run "
+                     f"{ref} --jump-study</code>: every numerical solver again at half and "
+                     "a quarter of <code>fretting.jump</code>.</p></div>")
+        return parts
+    bad = study[study["status"].map(lambda v: v not in gridstudy.SETTLED)]
+    parts.append(
+        "<p>Cycle-jump studies of this run (<code>--jump-study</code>): every numerical "
+        "solver at its jump J (the run's results), J/2 and J/4, on the same grid, values at "
+        "the same real cycle; <i>halving J</i> is (f(J/2) − f(J)) / |f(J)|, observed order "
+        "p and Richardson-extrapolated value f_ext from the three.</p>")
+    cls = "ok" if bad.empty else "bad"
+    parts.append(f'<p class="{cls}">{len(study) - len(bad)} / {len(study)} quantities '
+                 "converged or exact" + (f"; {len(bad)} not converged (flagged, their "
+                                         "metrics not gated beyond their budget): "
+                                         + _e(", ".join(dict.fromkeys(bad["quantity"])))
+                                         if len(bad) else "") + "</p>")
+    table = table_html(study, left=4, row_class=_study_row_class)
+    parts.append(f"<div class='scroll'>{table}</div>" if len(study) > 40 else table)
+    parts.append("</div>")
+    return parts
+
+
 def _sweep_check(case: CaseResults) -> list[str]:
     """The Dask-against-serial check of a sweep, if one was made."""
     check = case.path / "sweep_check.json"
@@ -314,6 +347,8 @@ def provenance_html(mf: dict[str, Any]) -> str:
             grid = pd.to_numeric(units["grid"], errors="coerce").fillna(1)
             units = units.assign(grid=grid.astype(int))
             cols.insert(2, "grid")
+        if "jump" in units.columns:  # run --jump-study: the runs at J/2 and J/4
+            cols.insert(2, "jump")
         walls = table_html(units[cols].rename(columns={"wall_s": "wall [s]"}), left=2)
     overrides = mf.get("overrides") or {}
     rows = [
@@ -379,13 +414,16 @@ def render(results: Scan, out: Path) -> str:
         n_ok, n_on = _n_passed(m), int(gated(m).sum())
         bad = len(not_converged(case.summary))
         grid = len(gridstudy.unsettled(case.convergence))
+        jump = len(gridstudy.unsettled(case.jump_study))
         status = "ok" if n_ok == n_on and not bad else "bad"
         toc.append(f'<li><a href="#case-{_e(case.name)}">{_e(case.name)}</a> '
                    f'<span class="{status}">{n_ok}/{n_on} metrics passed'
                    + (f", {len(m) - n_on} not gated" if n_on < len(m) else "")
                    + (f", {bad} not converged" if bad else "") + "</span>"
                    + (f' <span class="bad">{grid} quantities not grid-converged</span>'
-                      if grid else "") + "</li>")
+                      if grid else "")
+                   + (f' <span class="bad">{jump} quantities not converged in the cycle '
+                      'jump</span>' if jump else "") + "</li>")
     warn = ""
     if results.incomplete or results.damaged:
         items = "".join(f"<li><b>{_e(k)}</b>: {_e(v)}</li>"

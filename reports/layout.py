@@ -10,6 +10,9 @@
     DIR/<case>/convergence.csv                    run --convergence: one row per (solver,
                                                   param, step, gated quantity) of the
                                                   three-grid studies (reports.gridstudy)
+    DIR/<case>/jump_study.csv                     run --jump-study: one row per (solver,
+                                                  param, output cycle, quantity) of the
+                                                  cycle-jump studies (reports.jumpstudy)
     DIR/<case>/fields/<solver>/<param>/step_NNNN.npz   surface fields and planes
     DIR/<case>/fields/<solver>/<param>/step_NNNN.vtu   FEM meshes (ParaView)
     DIR/<case>/fields/<solver>/<param>/step_NNNN_surface.vtu   grid steps: surface cells
@@ -34,13 +37,14 @@ MANIFEST = "manifest.json"
 SUMMARY = "summary.csv"
 METRICS = "metrics.csv"
 CONVERGENCE = "convergence.csv"
+JUMP_STUDY = "jump_study.csv"
 EVENTS = "events.csv"
 FIELDS = "fields"
 PARTIAL_SUFFIX = ".partial"
 FAILED = "failed.json"
 
 #: names a case directory may hold; a directory with none of them is not a result
-OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, EVENTS, FIELDS,
+OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, JUMP_STUDY, EVENTS, FIELDS,
                        "sweep.png", "sweep_check.json"})
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9._=+-]")

@@ -93,6 +93,8 @@ class CasePlan:
     staging: Path | None = None  # set by the runner: where output steps are streamed
     convergence: bool = False  # run --convergence: grid studies (reports.gridstudy)
     grids: list[Any] = field(default_factory=list)  # their coarse runs (GridRun)
+    jump_study: bool = False  # run --jump-study: cycle-jump studies (reports.jumpstudy)
+    jumps: list[Any] = field(default_factory=list)  # their runs at J/2, J/4 (GridRun)
 
     def units(self) -> list[tuple[int, str]]:
         """(point index, solver) pairs to run, point-major, solvers in registry order."""

@@ -83,6 +83,16 @@ class CaseResults:
         return read_result(path, read_convergence)
 
     @property
+    def jump_study(self) -> pd.DataFrame:
+        """The cycle-jump studies of ``run --jump-study`` (an empty table without them)."""
+        from .jumpstudy import COLUMNS, read_jump_study
+
+        path = self.path / layout.JUMP_STUDY
+        if not path.exists():
+            return pd.DataFrame(columns=COLUMNS)
+        return read_result(path, read_jump_study)
+
+    @property
     def events(self) -> pd.DataFrame:
         """The regime events of the runs (``events.csv``, :mod:`reports.run_events`; an
         empty table when the case has none)."""
@@ -99,8 +109,8 @@ class CaseResults:
         return {}
 
     def check_files(self) -> None:
-        """Read every output step, solver table, the sweep check, the grid studies and the
-        events once (:class:`DamagedResult` on the first that cannot be read)."""
+        """Read every output step, solver table, the sweep check, the grid and jump studies
+        and the events once (:class:`DamagedResult` on the first that cannot be read)."""
         for solver in self.manifest.get("solvers", []):
             for param in dict.fromkeys(self.manifest.get("params", [""])):
                 for f in self._step_files(solver, param).values():
@@ -109,6 +119,7 @@ class CaseResults:
         if (self.path / SWEEP_CHECK).exists():
             read_result(self.path / SWEEP_CHECK, read_sweep_check)
         _ = self.convergence
+        _ = self.jump_study
         _ = self.events
 
 

@@ -37,7 +37,7 @@ from tqdm.auto import tqdm
 
 from cases.result import RunResult, atomic_write_text
 
-from . import gridstudy, layout, manifest, uncertainty
+from . import gridstudy, jumpstudy, layout, manifest, uncertainty
 from .compare import METRICS_COLUMNS, compare_point
 from .errors import UserError
 from .plan import CasePlan
@@ -191,6 +191,11 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
         fine = {(i, plan.solvers[k]): rows for (i, k), rows in got.rows.items()}
         study = gridstudy.run(plan, executor, progress, fine)
         got.records += study.records
+    jumps = None
+    if plan.jump_study and plan.jumps and not got.failures:  # J/2 and J/4 of fretting runs
+        fine = {(i, plan.solvers[k]): rows for (i, k), rows in got.rows.items()}
+        jumps = jumpstudy.run(plan, executor, progress, fine)
+        got.records += jumps.records
     unit_wall = float(sum(r["wall_s"] for r in got.records))
     run = CaseRun(plan.dir_name, None, wall_s=time.perf_counter() - t0, unit_wall_s=unit_wall)
     if got.failures:
@@ -205,6 +210,9 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     if study is not None:
         write_csv(staging / layout.CONVERGENCE, study.table)
         summary = gridstudy.flag_summary(summary, study.table)
+    if jumps is not None:
+        write_csv(staging / layout.JUMP_STUDY, jumps.table)
+        summary = jumpstudy.flag_summary_jump(summary, jumps.table)
     write_csv(staging / layout.SUMMARY, summary)
     if got.events:  # some solver watched for regime events (reports.run_events)
         write_csv(staging / layout.EVENTS,
@@ -215,10 +223,14 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     if study is not None:
         metrics = uncertainty.apply(gridstudy.flag_metrics(metrics, study.table),
                                     study.table)
+    if jumps is not None:
+        metrics = jumpstudy.flag_metrics_jump(metrics, jumps.table)
     write_csv(staging / layout.METRICS, metrics)
     body = _manifest_body(plan, got, t0, unit_wall, sources)
     if plan.convergence:
         body["convergence"] = gridstudy.manifest_entry(plan)
+    if plan.jump_study:
+        body["jump_study"] = jumpstudy.manifest_entry(plan)
     manifest.write(staging, {**body, **extra_manifest})
     remove_dir(final)
     os.replace(staging, final)

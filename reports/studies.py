@@ -1,6 +1,7 @@
 """The tables of a case's grid studies for the report: the run's own studies
 (``convergence.csv`` of ``run --convergence``) and the study a sweep over cell sizes makes
-(observed order and Roache's GCI of p_max and σ_VM,max, :mod:`reports.convergence`)."""
+(observed order and Roache's GCI of p_max and σ_VM,max, :mod:`reports.convergence`), and
+its cycle-jump studies (``jump_study.csv`` of ``run --jump-study``)."""
 
 from __future__ import annotations
 
@@ -69,3 +70,20 @@ def study_frame(case: CaseResults) -> pd.DataFrame:
         "f1": conv["f1"], "f2": conv["f2"], "f3": conv["f3"], "order p": conv["order"],
         "f_ext": conv["f_extrapolated"], "GCI21 [%]": 100 * conv["gci_fine"],
         "status": conv["status"], "note": conv["note"]})
+
+
+def jump_frame(case: CaseResults) -> pd.DataFrame:
+    """The run's cycle-jump studies (``jump_study.csv``) for the page: the jumps J/4, J/2,
+    J, the three values (finest first), the change when the run's J is halved [%], order,
+    extrapolated value, status."""
+    js = case.jump_study
+    if js.empty:
+        return pd.DataFrame()
+    return pd.DataFrame({
+        "solver": js["solver"], "param": js["param"], "cycle": js["cycle"],
+        "quantity": js["quantity"],
+        "unit": js["quantity"].map(lambda q: gridstudy.UNITS.get(q, "")),
+        "J/4": js["h1"], "J/2": js["h2"], "J": js["h3"],
+        "f(J/4)": js["f1"], "f(J/2)": js["f2"], "f(J)": js["f3"],
+        "halving J [%]": 100 * js["change_halved"], "order p": js["order"],
+        "f_ext": js["f_extrapolated"], "status": js["status"], "note": js["note"]})
