@@ -234,6 +234,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         if p.dir_name in seen:
             raise UserError(f"cases {seen[p.dir_name]} and {n} both write {p.dir_name}/")
         seen[p.dir_name] = n
+    for p in plans:
+        for w in p.warnings:
+            print(f"{PROG}: warning: {w}", file=sys.stderr)
     progress = False if args.no_progress else None
     codes = [_report_runs([execute(p, args.out, progress=progress)], args.out)
              for p in plans]  # each case reported as soon as it is done
@@ -253,6 +256,8 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     plan = plan_sweep(args.case, params, chosen, quick=args.quick,
                       overrides=_overrides(args.overrides), skipped=skipped,
                       limits=_limits(args), explicit=bool(_solver_list(args.solver)))
+    for w in plan.warnings:
+        print(f"{PROG}: warning: {w}", file=sys.stderr)
     progress = False if args.no_progress else None
     t0 = time.perf_counter()
     if args.workers == 0 and not args.scheduler:

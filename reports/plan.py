@@ -34,6 +34,24 @@ def check_fits(case: Case) -> None:
                 f"cell {cell:.3g} mm); enlarge grid.Lx/grid.Ly")
 
 
+def grid_warning(case: Case) -> str | None:
+    """A fretting case whose worn contact may outgrow the grid
+    (:attr:`cases.model.Case.worn_radius_estimate`), said before any work: the run is not
+    refused (the estimate is too large where a stick zone stays) but stops at the grid
+    edge if the contact reaches it."""
+    a = case.worn_radius_estimate
+    g = case.grid
+    if a is None or a < min(g.Lx / 2 - g.dx, g.Ly / 2 - g.dy):
+        return None
+    where = f" [{case.param}]" if case.param else ""
+    need = 2.0 * a + 4.0 * max(g.dx, g.dy)
+    return (f"{case.name}{where}: grid.Lx x grid.Ly = {g.Lx:g} x {g.Ly:g} mm: by Archard's "
+            f"law with gross slip in every cycle the worn contact may reach r = {a:.3g} mm "
+            f"by cycle {case.fretting.cycles:g} (less where a stick zone stays); if it "
+            f"reaches the grid edge the run stops there; grid.Lx = grid.Ly = {need:.3g} mm "
+            "keeps it inside")
+
+
 def available_memory() -> float:
     """Memory the machine has available now [bytes] (MemAvailable of /proc/meminfo, else
     the free physical pages)."""
@@ -95,6 +113,7 @@ class CasePlan:
     grids: list[Any] = field(default_factory=list)  # their coarse runs (GridRun)
     jump_study: bool = False  # run --jump-study: cycle-jump studies (reports.jumpstudy)
     jumps: list[Any] = field(default_factory=list)  # their runs at J/2, J/4 (GridRun)
+    warnings: list[str] = field(default_factory=list)  # said before any work (grid_warning)
 
     def units(self) -> list[tuple[int, str]]:
         """(point index, solver) pairs to run, point-major, solvers in registry order."""
@@ -144,13 +163,16 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
     source = case_path(ref)
     if points is None:
         points = load_case(source, quick=quick, overrides=overrides)
+    warnings = []
     for case in points:
         check_keys(case, solvers.names())
         check_fits(case)
+        if (w := grid_warning(case)) is not None:
+            warnings.append(w)
     name = points[0].name
     plan = CasePlan(name=name, source=source, points=points, solvers=list(solver_names),
                     skipped=dict(skipped or {}), quick=quick, overrides=dict(overrides or {}),
-                    sweep=sweep, dir_name=dir_name or name)
+                    sweep=sweep, dir_name=dir_name or name, warnings=warnings)
     for s in plan.solvers:
         reasons = [solvers.unsupported(s, c) for c in points]
         if all(r is not None for r in reasons):
