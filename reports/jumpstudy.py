@@ -84,7 +84,7 @@ def finer_cases(case: Case) -> list[Case]:
     """``case`` at J/2 and J/4 (levels 2 and 3 of the study; 1 is the run's J)."""
     fr = case.fretting
     assert fr is not None
-    return [dataclasses.replace(case, fretting=dataclasses.replace(fr, jump=fr.jump / k))
+    return [case.with_changes(fretting=dataclasses.replace(fr, jump=fr.jump / k))
             for k in (RATIO, RATIO * RATIO)]
 
 

@@ -125,3 +125,23 @@ def test_no_cycle_jump_is_an_error(tmp_path, capsys, case, needle):
     err = capsys.readouterr().err
     assert "--jump-study: no run has a cycle jump to halve" in err and needle in err
     assert not (tmp_path / case).exists()  # refused before any work
+
+
+def test_a_failed_level_leaves_the_quantity_not_converged():
+    """A run at J/2 or J/4 that fails (contact at the grid edge, no convergence) is no
+    evidence: the rows say which level failed and why, and are not converged."""
+    from reports.gridstudy import Study
+    from reports.plan import plan_case
+
+    plan = jumpstudy.add_jumps(plan_case("fretting_orthotropic", ["ic"], quick=True,
+                                         overrides={"friction.beta": 0.0}))
+    assert [(g.level, g.case.fretting.jump) for g in plan.jumps] == [(2, 250.0), (3, 125.0)]
+    own = [{"step": 2, "cycle": 1000.0, "w_max": 1e-3}, {"step": 4, "cycle": 2000.0,
+                                                          "w_max": 2e-3}]
+    half = [{**r, "w_max": 1.1 * r["w_max"]} for r in own]
+    study = Study(rows={(0, "ic", 2): half}, errors={(0, "ic", 3): "failed: edge"})
+    table = jumpstudy.table(plan, {(0, "ic"): own}, study).set_index("cycle")
+    assert list(table["quantity"]) == ["w_max", "w_max"]
+    assert table.loc[2000.0, "change_halved"] == pytest.approx(0.1, rel=1e-12)
+    assert (table["status"] == "not converged").all()
+    assert (table["note"] == "J/4 failed (failed: edge)").all()
