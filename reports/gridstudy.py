@@ -91,8 +91,9 @@ GRID = Kind()
 
 @dataclass(frozen=True)
 class GridRun:
-    """One coarse run of a grid study: sweep point ``point``, ``solver``, ``level`` 2 or 3
-    (1 is the run's own grid), on ``case``."""
+    """One extra run of a study: sweep point ``point``, ``solver``, ``level`` 2 or 3
+    (1 is the run's own), on ``case`` (a coarser grid here, a smaller cycle jump in
+    :mod:`reports.jumpstudy`)."""
 
     point: int
     solver: str

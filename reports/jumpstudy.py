@@ -49,7 +49,6 @@ from .gridstudy import (
     note_lines,
     read_study,
     study_row,
-    unsettled,
     value_of,
 )
 from .plan import CasePlan, Limits
@@ -66,7 +65,7 @@ JUMP = Kind(label="jump", symbol="J", unit=" cycles", cell="cell_size")
 
 __all__ = ["COLUMNS", "FLAG_COLUMN", "JUMP", "RATIO", "add_jumps", "flag_metrics_jump",
            "flag_summary_jump", "manifest_entry", "not_studied", "note_lines_jump",
-           "read_jump_study", "run", "table", "unsettled"]
+           "read_jump_study", "run", "table"]
 
 
 def not_studied(solver: str, case: Case) -> str | None:
