@@ -247,7 +247,10 @@ def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray,
     ``(K + B)⁻¹ = C − C_{:A} (I + B_AA C_AA)⁻¹ B_AA C_{A:}`` the dense factorisation
     shrinks from all condensed DOFs to the DOFs in contact.  ``memo`` keeps
     the last factorisation: the passes of an augmented solve mostly repeat the tangent
-    of the pass before (same contact and stick sets), and then reuse it.
+    of the pass before (same contact and stick sets), and then reuse it.  C is
+    symmetric (:class:`fem_reference.model.FemModel` builds it so), so its columns A are
+    read as the rows A: one contiguous gather instead of a strided one, about three
+    times faster on the dense compliance.
     """
     y = C @ rhs
     B = sp.csr_matrix(B)
@@ -260,6 +263,7 @@ def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray,
     if A.size == 0:
         return y
     BAA = B[A][:, A]
+    C_A = C[A]  # the rows A, = (the columns A)ᵀ
     same = (memo is not None and memo.get("A") is not None
             and np.array_equal(memo["A"], A) and np.array_equal(memo["indptr"], BAA.indptr)
             and np.array_equal(memo["indices"], BAA.indices)
@@ -267,13 +271,13 @@ def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray,
     if same:
         lu = memo["lu"]
     else:
-        M = BAA @ C[np.ix_(A, A)]
+        M = BAA @ C_A[:, A]
         M[np.diag_indices_from(M)] += 1.0
         lu = la.lu_factor(M, overwrite_a=True, check_finite=False)
         if memo is not None:
             memo.update(A=A, indptr=BAA.indptr, indices=BAA.indices, data=BAA.data, lu=lu)
     z = la.lu_solve(lu, BAA @ y[A], check_finite=False)
-    return y - C[:, A] @ z
+    return y - C_A.T @ z
 
 
 def newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray, *,
