@@ -45,6 +45,7 @@ import scipy.sparse as sp
 
 from cases.result import OPEN, SLIP, STICK
 
+from .stiffened import StiffenedSolver
 from .threads import blas_threads
 
 
@@ -239,50 +240,16 @@ class Solution:
 
 
 def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray,
-                     memo: dict | None = None) -> np.ndarray:
-    """Solve ``(K + B) x = rhs`` with ``K = C⁻¹`` (dense) and a sparse contact tangent B.
-
-    B only couples the DOFs A (its nonzero rows and columns) touched by points in
-    contact, so with the push-through (Woodbury) identity
-    ``(K + B)⁻¹ = C − C_{:A} (I + B_AA C_AA)⁻¹ B_AA C_{A:}`` the dense factorisation
-    shrinks from all condensed DOFs to the DOFs in contact.  ``memo`` keeps
-    the last factorisation: the passes of an augmented solve mostly repeat the tangent
-    of the pass before (same contact and stick sets), and then reuse it.  C is
-    symmetric (:class:`fem_reference.model.FemModel` builds it so), so its columns A are
-    read as the rows A: one contiguous gather instead of a strided one, about three
-    times faster on the dense compliance.
-    """
-    y = C @ rhs
-    B = sp.csr_matrix(B)
-    B.eliminate_zeros()
-    B.sort_indices()
-    # the DOFs of nonzero rows and columns: a point's tangent need not be symmetric
-    # (slip couples t to u_n, not p_n to u_t), and a row without its column would be
-    # lost by B_AA
-    A = np.unique(np.concatenate(B.nonzero()))
-    if A.size == 0:
-        return y
-    BAA = B[A][:, A]
-    C_A = C[A]  # the rows A, = (the columns A)ᵀ
-    same = (memo is not None and memo.get("A") is not None
-            and np.array_equal(memo["A"], A) and np.array_equal(memo["indptr"], BAA.indptr)
-            and np.array_equal(memo["indices"], BAA.indices)
-            and np.array_equal(memo["data"], BAA.data))
-    if same:
-        lu = memo["lu"]
-    else:
-        M = BAA @ C_A[:, A]
-        M[np.diag_indices_from(M)] += 1.0
-        lu = la.lu_factor(M, overwrite_a=True, check_finite=False)
-        if memo is not None:
-            memo.update(A=A, indptr=BAA.indptr, indices=BAA.indices, data=BAA.data, lu=lu)
-    z = la.lu_solve(lu, BAA @ y[A], check_finite=False)
-    return y - C_A.T @ z
+                     lin: StiffenedSolver | None = None) -> np.ndarray:
+    """Solve ``(K + B) x = rhs`` with ``K = C⁻¹`` (dense) and a sparse contact tangent B
+    by the push-through identity on the DOFs of B (:mod:`fem_reference.stiffened`);
+    ``lin`` keeps the factors for the next solves of the same contact problem."""
+    return (lin if lin is not None else StiffenedSolver(C)).solve(B, rhs)
 
 
 def newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray, *,
            cw: float | np.ndarray = 0.0, tol: float = 1e-9, max_iter: int = 150,
-           memo: dict | None = None) -> Solution:
+           lin: StiffenedSolver | None = None) -> Solution:
     """Semi-smooth Newton iteration of the condensed contact problem.
 
     ``K`` is the condensed stiffness, ``C = K⁻¹`` the compliance.
@@ -293,7 +260,7 @@ def newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u
     """
     with blas_threads(1):
         return _newton(K, C, law, pts, ctrl, u0, cw=cw, tol=tol, max_iter=max_iter,
-                       memo=memo)
+                       lin=lin)
 
 
 MAX_OUTER = 40  # multiplier updates of one augmented solve
@@ -301,7 +268,7 @@ MAX_OUTER = 40  # multiplier updates of one augmented solve
 
 def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control,
               u0: np.ndarray, *, cw: float | np.ndarray = 0.0, tol: float = 1e-9,
-              max_outer: int = MAX_OUTER) -> Solution:
+              max_outer: int = MAX_OUTER, lin: StiffenedSolver | None = None) -> Solution:
     """Augmented-Lagrangian solve (Alart & Curnier 1991; Eqs. 15-17 on the penalty): the
     penalty Newton solve of :func:`newton` with the multipliers λ_n = ``pts.lam_n`` and
     λ_t = ``pts.t_old`` held, then ``λ ← (p_n, p_t)``, until the multipliers change by
@@ -310,14 +277,17 @@ def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control
     since the last converged state, whatever the penalty: the penalty sets only the rate
     (each update shrinks the constraint violation by about the ratio of the surface
     stiffness to k_n).  ``iterations`` of the result: Newton iterations of every pass.
+    ``lin``: the linear solver of the Newton steps (:mod:`fem_reference.stiffened`) on
+    ``C``, kept by the caller to reuse its factors in the next solves (default: a new
+    one for this solve).
     """
     u, delta, D = u0, float(ctrl.delta), np.array(ctrl.D, dtype=float)
     total = 0
     change = float("inf")
-    memo: dict = {}
+    lin = lin if lin is not None else StiffenedSolver(C)
     for outer in range(1, max_outer + 1):
         step_ctrl = replace(ctrl, delta=delta, D=D)
-        sol = newton(K, C, law, pts, step_ctrl, u, cw=cw, tol=tol, memo=memo)
+        sol = newton(K, C, law, pts, step_ctrl, u, cw=cw, tol=tol, lin=lin)
         total += sol.iterations
         ev = sol.ev
         scale = max(float(ev.pn.max(initial=0.0)), 1e-300)
@@ -338,10 +308,10 @@ def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control
 
 
 def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray,
-            *, cw: float | np.ndarray, tol: float, max_iter: int, memo: dict | None = None
+            *, cw: float | np.ndarray, tol: float, max_iter: int, lin: StiffenedSolver | None = None
             ) -> Solution:
     eqs = _Equations(K=K, C=C, law=law, pts=pts, ctrl=ctrl, cw=cw, extra=_unknowns(ctrl),
-                     memo=memo)
+                     lin=lin)
     u = u0.copy()
     delta = float(ctrl.delta)
     D = np.array(ctrl.D, dtype=float)
@@ -391,7 +361,7 @@ class _Equations:
     ctrl: Control
     cw: float | np.ndarray
     extra: tuple[tuple[str, int | None], ...]
-    memo: dict | None = None  # the last factorisation (:func:`_solve_stiffened`)
+    lin: StiffenedSolver | None = None  # the kept factors (:func:`_solve_stiffened`)
 
     def residual(self, u: np.ndarray, delta: float, D: np.ndarray
                  ) -> tuple[Evaluation, np.ndarray, np.ndarray, np.ndarray]:
@@ -452,7 +422,7 @@ class _Equations:
                 W[i] *= cs
                 W[i, i] += 1.0
         try:
-            X = _solve_stiffened(self.C, B, np.column_stack([-Ru, U]), self.memo)
+            X = _solve_stiffened(self.C, B, np.column_stack([-Ru, U]), self.lin)
             xu, Xu = X[:, 0], X[:, 1:]
             dx_e = la.solve(W - V @ Xu, -Re - V @ xu) if ne else np.zeros(0)
         except (la.LinAlgError, ValueError) as exc:

@@ -21,6 +21,7 @@ from .far_field import block_offset, block_offset_t
 from .model import FemModel
 from .nodal import coefficients, dual_weights, modified_basis
 from .sampling import ProbeSampling, probe_layout, probe_sampling
+from .stiffened import StiffenedSolver
 from .stresses import PointLocator
 
 
@@ -41,6 +42,7 @@ class Run:
     D: np.ndarray  # rigid tangential displacement g_t,o
     compliance: float = 0.0  # far-field compliance c: half-space approach = δ + c P
     compliance_t: float = 0.0  # tangential: half-space shift = D + c_t Q (Q on body a)
+    lin: StiffenedSolver | None = None  # the contact solves' kept factors
 
 
 @dataclass(frozen=True)

@@ -191,3 +191,46 @@ def test_stiffened_solve_equals_the_dense_solve(pattern):
     rhs = rng.standard_normal((n, 2))
     x = _solve_stiffened(C, sp.csr_matrix(B), rhs)
     assert np.allclose(x, np.linalg.solve(K + B, rhs), rtol=0, atol=1e-12)
+
+
+def test_stiffened_solver_updates_equal_fresh_solves():
+    """The kept factors with Woodbury updates (:mod:`fem_reference.stiffened`) solve a
+    sequence of contact tangents like a dense solve of each, while points change state
+    (a local change of B), come into contact (new DOFs) and leave it; a change of too
+    high a rank refactorises."""
+    from fem_reference.stiffened import StiffenedSolver
+
+    rng = np.random.default_rng(11)
+    n = 200
+    X = rng.standard_normal((n, n))
+    K = X @ X.T + n * np.eye(n)
+    C = np.linalg.inv(K)
+    C = 0.5 * (C + C.T)
+    act = rng.choice(n, 80, replace=False)
+    B = np.zeros((n, n))
+    B[np.ix_(act, act)] = 0.3 * rng.standard_normal((80, 80)) + 5.0 * np.eye(80)
+    lin = StiffenedSolver(C)
+    for it in range(10):
+        rhs = rng.standard_normal((n, 2))
+        x = lin.solve(sp.csr_matrix(B), rhs)
+        ref = np.linalg.solve(K + B, rhs)
+        assert np.abs(x - ref).max() < 1e-12 * np.abs(ref).max()
+        assert np.allclose(lin.solve(sp.csr_matrix(B), rhs[:, 0]), ref[:, 0], rtol=0,
+                           atol=1e-12 * np.abs(ref).max())
+        k = rng.choice(act, 3, replace=False)  # points change state
+        B[np.ix_(k, k)] += 0.5 * rng.standard_normal((3, 3))
+        new = rng.choice(np.setdiff1d(np.arange(n), act), 2, replace=False)  # come in
+        loc = np.concatenate([new, k[:2]])
+        B[np.ix_(loc, loc)] += 0.2 * rng.standard_normal((4, 4)) + 5.0 * np.eye(4)
+        act = np.concatenate([act, new])
+        if it == 4:  # two DOFs leave the contact
+            B[act[:2], :] = 0.0
+            B[:, act[:2]] = 0.0
+            act = act[2:]
+    assert lin.factorisations < lin.updates
+    B[np.ix_(act, act)] += 0.1 * rng.standard_normal((act.size, act.size))  # all change
+    before = lin.factorisations
+    rhs = rng.standard_normal(n)
+    assert np.allclose(lin.solve(sp.csr_matrix(B), rhs), np.linalg.solve(K + B, rhs),
+                       rtol=0, atol=1e-12)
+    assert lin.factorisations == before + 1
