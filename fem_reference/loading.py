@@ -29,7 +29,6 @@ from cases.result import OPEN, SLIP, STICK
 from .contact import Control, Evaluation, Solution, augmented, evaluate
 from .model import FemError, slide_direction, wear_compliances
 from .run import OutputState, Run, hertz_start
-from .stiffened import StiffenedSolver
 
 N_NORMAL_DISSIMILAR = 5  # normal load increments of dissimilar materials
 N_TANGENTIAL = 5  # tangential load (or shift) increments
@@ -70,8 +69,6 @@ def solve_increment(run: Run, ctrl: Control, cw: float | np.ndarray = 0.0
     the FE contact zone (1.5 elements from r_c).
     """
     m = run.model
-    if run.lin is None:
-        run.lin = StiffenedSolver(m.Crel)
     sol = augmented(m.Krel, m.Crel, m.law, run.nodes, ctrl, run.u, cw=cw,
                     tol=max(1e-9, 10 * m.case.solver.tol), lin=run.lin)
     ev = sol.ev

@@ -42,7 +42,7 @@ class Run:
     D: np.ndarray  # rigid tangential displacement g_t,o
     compliance: float = 0.0  # far-field compliance c: half-space approach = δ + c P
     compliance_t: float = 0.0  # tangential: half-space shift = D + c_t Q (Q on body a)
-    lin: StiffenedSolver | None = None  # the contact solves' kept factors
+    lin: StiffenedSolver | None = None  # the contact solves' kept factors (start_run)
 
 
 @dataclass(frozen=True)
@@ -80,7 +80,7 @@ def start_run(model: FemModel) -> Run:
     return Run(model=model, nodes=nodes, probes=probes, G_all=G_all,
                Nmod=(sampling.N @ B.T).tocsr(), sampling=sampling,
                locator=PointLocator(model.space),
-               u=u, delta=delta, D=np.zeros(2),
+               u=u, delta=delta, D=np.zeros(2), lin=StiffenedSolver(model.Crel),
                **dict(zip(("compliance", "compliance_t"),
                           far_compliance(model, nodes, G_all), strict=True)))
 

@@ -38,6 +38,11 @@ RANK_FRACTION = 1.0 / 6.0
 MIN_RANK = 48  # ... or this many DOFs, below which an update is always cheaper
 
 
+def _rank_limit(size: int) -> int:
+    """The largest rank of a change the kept factors of a block of ``size`` DOFs take."""
+    return max(MIN_RANK, int(RANK_FRACTION * size))
+
+
 def support(B: sp.csr_matrix) -> np.ndarray:
     """The DOFs of B's nonzero rows and columns (sorted): a point's tangent need not be
     symmetric (slip couples t to u_n, not p_n to u_t), and a row without its column
@@ -89,10 +94,11 @@ class StiffenedSolver:
             return y
         two_d = y.ndim == 2
         Y2 = y if two_d else y[:, None]
-        if self.lu is None or not self._update_ok(A):
+        X = None if self.lu is None else np.setdiff1d(A, self.A0, assume_unique=True)
+        if X is None or X.size > _rank_limit(self.A0.size + X.size):
             out = self._fresh(A, B, Y2)
         else:
-            out = self._solve_updated(A, B, Y2)
+            out = self._solve_updated(A, X, B, Y2)
         return out if two_d else out[:, 0]
 
     def _c_rows(self, Ap: np.ndarray) -> np.ndarray:
@@ -110,16 +116,12 @@ class StiffenedSolver:
         z = la.lu_solve(self.lu, BAA @ Y2[A], check_finite=False)
         return Y2 - C_A.T @ z
 
-    def _update_ok(self, A: np.ndarray) -> bool:
-        new = np.setdiff1d(A, self.A0, assume_unique=True)
-        limit = max(MIN_RANK, int(RANK_FRACTION * (self.A0.size + new.size)))
-        return new.size <= limit
-
-    def _solve_updated(self, A: np.ndarray, B: sp.csr_matrix, Y2: np.ndarray) -> np.ndarray:
-        """The solve with M₀'s factors and the Woodbury update of ΔB (module doc)."""
+    def _solve_updated(self, A: np.ndarray, X: np.ndarray, B: sp.csr_matrix,
+                       Y2: np.ndarray) -> np.ndarray:
+        """The solve with M₀'s factors and the Woodbury update of ΔB (module doc); X:
+        the DOFs of A not in A₀."""
         A0 = self.A0
         n0 = A0.size
-        X = np.setdiff1d(A, A0, assume_unique=True)
         Ap = np.concatenate([A0, X])  # A' in the order (A₀, X)
         C_A = self._c_rows(Ap)
         Bn = B[Ap][:, Ap].tocsr()
@@ -127,8 +129,7 @@ class StiffenedSolver:
         dB = (Bn - B0p).tocsr()
         dB.eliminate_zeros()
         S = np.unique(dB.nonzero()[0])
-        limit = max(MIN_RANK, int(RANK_FRACTION * Ap.size))
-        if S.size > limit:  # cheaper to factorise the current M
+        if S.size > _rank_limit(Ap.size):  # cheaper to factorise the current M
             return self._fresh(A, B, Y2)
         Yb = None
         if X.size:
