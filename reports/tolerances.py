@@ -32,7 +32,12 @@ the cell differ by a fraction of the traction itself — O(1) for the step-like 
 edge of a worn contact at any grid size (:mod:`reports.compare`); the L2 norms, the
 semi-widths and the contact area still measure the edge (except the plane L2 norms of a
 case that declares ``vm_max`` not converged, a log-singular edge: they leave out the
-band too);
+band too); the max norms of ``p_x``, ``p_y``, ``vm_xz`` and ``vm_yz`` also leave out the
+*stick band*, the points within one cell (the coarser solver's own cell) of either
+solver's stick–slip boundary, where the traction has a √(c − r) kink that no field held
+at points h apart follows (docs/formulation.md §2.7): the max over that band is written
+as the metric ``kink`` beside the max's tolerance, with status "not converged", and is
+never gated (it has no tolerance key);
 ``rel`` = |A − B| / |B|; for ``loop_q`` ``max`` = max over the cycle's loop points of
 |Q_A − Q_B| (the tangential load vector on body a) / μP, μ the friction coefficient along
 the path direction and P the case's Hertz load (:func:`reports.compare.friction_scale`),

@@ -33,6 +33,8 @@ CALIBRATION = [
     ("pin_on_disk", 0, 10973, 47768, 1266, None, 13.0),
     ("pin_on_disk", 1, 21153, 90711, 2514, 2704, 75.1),
 ]
+# the quick mesh the calibration runs had where a case's quick tier has changed since
+MESH_THEN = {"cattaneo_mindlin": {"fem.h": 0.125}}
 # the worst ratios of estimate and measurement over the calibration table, with margin
 SIZE_FACTOR = 1.25  # measured: tets 1.14, DOFs 1.18, m 1.05
 MEMORY_FACTOR = 1.3  # measured 1.19
@@ -45,7 +47,7 @@ def _ratio(a: float, b: float) -> float:
 
 @pytest.mark.parametrize("name, point, tets, dofs, m, peak_mb, wall_s", CALIBRATION)
 def test_estimate_matches_the_calibration_runs(name, point, tets, dofs, m, peak_mb, wall_s):
-    case = load_case(name, quick=True)[point]
+    case = load_case(name, quick=True, overrides=MESH_THEN.get(name))[point]
     b = cost.breakdown(case)
     c = fem_reference.estimate(case)
     assert _ratio(b.tets, tets) < SIZE_FACTOR

@@ -176,9 +176,11 @@ def test_sweep_reuses_the_model_core(monkeypatch):
 
 
 def _mindlin_errors(case, res):
-    """(L2, max) errors of the FE p_x on the case grid against Mindlin's traction, in
-    the metrics' normalisation (reports.tolerances): L2 over the contact, max outside
-    the band of one cell inside the contact edge, both over max |q|."""
+    """(L2, max, banded max) errors of the FE p_x on the case grid against Mindlin's
+    traction, in the metrics' normalisation (reports.tolerances): L2 over the contact,
+    max outside the band of one cell inside the contact edge, banded max also outside
+    the stick band (one element on either side of the stick radius c, docs/formulation.md
+    §2.7), all over max |q|."""
     a0, p0 = case.hertz_scales
     mu, P, Q = case.friction.mu1, case.load.P, case.load.Qx
     c = a0 * (1 - Q / (mu * P)) ** (1 / 3)
@@ -190,8 +192,10 @@ def _mindlin_errors(case, res):
     e = res.steps[0].surface["p_x"] - q
     inside = r < a0
     band = r < a0 - max(g.dx, g.dy)
+    off = band & (np.abs(r - c) > case.fem.h * a0)
     return (float(np.linalg.norm(e[inside]) / np.linalg.norm(q[inside])),
-            float(np.abs(e[band]).max() / np.abs(q).max()))
+            float(np.abs(e[band]).max() / np.abs(q).max()),
+            float(np.abs(e[off]).max() / np.abs(q).max()))
 
 
 def test_cattaneo_mindlin_traction_converges_on_three_meshes():
@@ -200,9 +204,13 @@ def test_cattaneo_mindlin_traction_converges_on_three_meshes():
     with observed orders from the three meshes.  L2: order above 0.6 (the √(c − r)
     kink at the stick radius allows about 1).  Max norm: it decreases on every mesh, but
     its pairwise order depends on where the kink falls between the nodes (measured
-    0.245 -> 0.193 -> 0.180, orders 0.58 and 0.25), so only the decrease is asserted."""
+    0.245 -> 0.193 -> 0.180, orders 0.58 and 0.25), so only the decrease is asserted.
+    Off the stick band the max error is within 0.10 (issue 12's bound) on every mesh
+    (measured 0.038, 0.026, 0.048: the rest of the discretisation, no order to read)."""
     hs = (0.25, 1 / 6, 0.125)
     errs = [_mindlin_errors(*cattaneo(h)) for h in hs]
-    l2, mx = [e[0] for e in errs], [e[1] for e in errs]
+    l2, mx, off = ([e[k] for e in errs] for k in range(3))
     print(assert_converges(hs, l2, min_order=0.6, what="p_x L2 error"))
     print(assert_converges(hs, mx, min_order=0.0, what="p_x max error"))
+    print(f"p_x max error off the stick band: {off}")
+    assert max(off) < 0.10

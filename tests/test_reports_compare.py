@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 import test_cli_fakes as fakes
 
+from analytic import mindlin
 from cases.loader import load_case
 from cases.model import CaseError
 from cases.result import Plane, RunResult, StepResult
@@ -22,6 +23,7 @@ from reports.compare import (
     field_errors,
     interior,
     sample,
+    stick_band,
 )
 from reports.cycles import compare_tables, friction_scale
 
@@ -117,6 +119,70 @@ def test_max_norms_leave_out_the_edge_band():
     sb.surface["p_n"][np.abs(np.hypot(x[:, None], x[None, :]) - 0.4) < 0.03] = 0.7
     rows = {(q, m): v for q, m, v in compare_steps(sa, sb, a0=0.5, p0=1.0)}
     assert rows[("p_n", "max")] == pytest.approx(0.3, rel=1e-12)
+
+
+def _mindlin_step(x: np.ndarray, c: float, h: float | None = None) -> StepResult:
+    """Cattaneo–Mindlin surface fields (a = 1, p0 = 1, μ = 0.3, stick radius c) on the
+    grid x²; with ``h``, every field is held at nodes h apart (offset from the grid) and
+    interpolated bilinearly, as a solver's nodal fields are."""
+    def fields(X, Y):
+        r = np.hypot(X, Y)
+        state = np.where(r < 1, np.where(r < c, 1, 2), 0)
+        return (np.sqrt(np.clip(1 - r**2, 0, None)), mindlin.traction(r, 1.0, c, 0.3, 1.0),
+                (state == 1).astype(float), (state == 2).astype(float))
+    if h is None:
+        p, q, stick, slip = fields(*np.meshgrid(x, x, indexing="ij"))
+    else:
+        nodes = np.arange(-1.4 - 0.37 * h, 1.4 + h, h)
+        p, q, stick, slip = (sample((nodes, nodes), f, (x, x))
+                             for f in fields(*np.meshgrid(nodes, nodes, indexing="ij")))
+    state = np.where(stick > 0.5, 1, np.where(slip > 0.5, 2, 0))
+    return StepResult(scalars={}, x=x, y=x, planes={},
+                      surface={"p_n": p, "p_x": q, "p_y": 0 * q, "state": state})
+
+
+def test_tangential_max_norms_leave_out_the_stick_band():
+    """Exact Mindlin at Q/μP = 0.25 (c = 0.909 a) held at nodes a/12 apart: the
+    √(c − r) kink between the nodes misses the exact traction by a quarter of it, and
+    only within a cell of the stick radius.  The gated max leaves that band out, the
+    ``kink`` row keeps it, the L2 norm still sees it; without the states there is no
+    band."""
+    x = np.linspace(-1.3, 1.3, 61)
+    exact, nodal = _mindlin_step(x, 0.909), _mindlin_step(x, 0.909, h=1 / 12)
+    rows = {(q, m): v for q, m, v in compare_steps(nodal, exact, a0=1.0, p0=1.0,
+                                                   cell=1 / 12)}
+    assert rows[("p_x", "kink")] > 0.25
+    assert rows[("p_x", "max")] < 0.1  # the rest: the contact edge between nodes
+    assert rows[("p_x", "l2")] > 0.1
+    assert ("p_n", "kink") not in rows  # the pressure has no stick band
+    for st in (exact, nodal):
+        del st.surface["state"]
+    rows = {(q, m): v for q, m, v in compare_steps(nodal, exact, a0=1.0, p0=1.0,
+                                                   cell=1 / 12)}
+    assert rows[("p_x", "max")] > 0.25 and ("p_x", "kink") not in rows
+
+
+def test_the_stick_band_still_catches_a_wrong_stick_radius():
+    """A solver whose stick radius is 0.05 a (0.6 cell) too small, at Q/μP = 0.5: the
+    max norm off the band exceeds the default fem-analytic tolerance (0.17)."""
+    x = np.linspace(-1.3, 1.3, 61)
+    rows = {(q, m): v for q, m, v in compare_steps(
+        _mindlin_step(x, 0.744), _mindlin_step(x, 0.794), a0=1.0, p0=1.0, cell=1 / 12)}
+    assert rows[("p_x", "max")] > tol.default_tolerance("fem-analytic", "p_x", "max")
+    assert rows[("p_x", "l2")] > tol.default_tolerance("fem-analytic", "p_x", "l2")
+
+
+def test_stick_band_is_the_points_within_a_width_of_the_other_state():
+    x = np.linspace(-1.0, 1.0, 21)  # spacing 0.1
+    state = np.zeros((21, 21), dtype=int)
+    state[:, :] = 2
+    state[:10, :] = 1  # stick for x < 0, slip for x >= 0: the boundary is x = -0.05
+    step = StepResult(scalars={}, x=x, y=x, planes={}, surface={"state": state})
+    band = stick_band([step], x, x, 0.2)
+    np.testing.assert_array_equal(band[:, 0], np.abs(x + 0.05) <= 0.2)
+    assert band.all(axis=1).sum() == 4  # x = -0.2, -0.1, 0, 0.1
+    state[:] = 1  # all stick: no boundary, no band
+    assert not stick_band([step], x, x, 0.2).any()
 
 
 def test_pair_metrics_on_different_grids():
