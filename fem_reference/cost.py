@@ -116,7 +116,7 @@ from cases.model import Case, FemSettings
 from cases.result import Cost
 
 from .mesh import MeshSpec
-from .model import FemModel, choose_shape, expected_radius, reference_length
+from .model import FemModel, choose_shape, expected_radius, has_companion, reference_length
 
 C_TET = 0.225  # mean tetrahedron volume / size³ of gmsh's meshes
 C_TRI = 0.405  # mean surface triangle area / size²
@@ -156,7 +156,7 @@ def mesh_spec(case: Case) -> tuple[MeshSpec | None, dict]:
     normal_only = law == "frictionless" or (law == "sliding" and case.identical_materials)
     info = {"a_max": a_max, "r_c": r_c, "shape": shape, "law": law,
             "comps": (2,) if normal_only else (0, 1, 2),
-            "nus": tuple(sorted({case.a.nu, case.b.nu}))}
+            "nus": tuple(sorted({case.a.nu, case.b.nu})), "companion": has_companion(case)}
     kw = dict(shape=shape, L=fem.block, H=fem.depth, h=fem.h, r_ref=r_c, z_ref=z_ref,
               grading=0.25, h_max=fem.block / 4.0, r_fine=r_fine)
     try:
@@ -311,12 +311,15 @@ def _breakdown(case: Case) -> Breakdown:
         + max(3 * 8.0 * n * min(m, SCHUR_BLOCK) + dense, 3 * dense),
         "dense": BASE_BYTES + kept + factor + DENSE_COPIES * dense,
     }
+    n_factors = n_nu * (2 if info["companion"] else 1)  # a companion: one more, not condensed
+    if info["companion"]:
+        memory["dense"] += n_nu * factor
     solves, iterations, outputs = contact_solves(case, info["law"])
     seconds = {
         "base": SECONDS_BASE,
         "mesh": SECONDS_PER_TET_MESH * tets,
         "assembly": n_nu * SECONDS_PER_TET_ASSEMBLY * tets,
-        "factorisation": n_nu * SECONDS_FACTOR * n * n,
+        "factorisation": n_factors * SECONDS_FACTOR * n * n,
         "condensation": n_nu * SECONDS_CONDENSE * n ** (4.0 / 3.0) * m,
         "dense": SECONDS_DENSE * m**3,
         "contact": solves * iterations * (SECONDS_CONTACT * A**3 + SECONDS_CONTACT_M2 * m * m),

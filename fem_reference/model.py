@@ -19,6 +19,17 @@ about both vertical planes (frictionless, or friction with no tangential load an
 tribological axes along x, y), a half block (Y ≥ 0) for friction, tangential loading
 and sliding along ±x with axes along x, y; otherwise the full block.  Symmetry planes
 carry roller conditions (zero normal displacement).
+
+One more half block: identical materials sliding along ±x with axes *not* along x, y
+(the orthotropic pin at β = 45°).  Its contact problem is a normal one (K = 0) and
+symmetric about Y = 0, but the friction traction c p_n (``Law.slide_traction``) has a y
+component, even in y like p_n: a load antisymmetric about the plane.  The half block
+carries it as a *companion* problem, the same half block with the mirror conditions
+swapped (u_x = u_z = 0 on Y = 0, u_y free), factorised once more but never condensed;
+the displacement of a body is the sum of the two solutions (:class:`BodyDisplacement`),
+and the companion's components change sign under the mirror where the symmetric
+solution's do not (:meth:`Symmetry.map`, ``fem_reference.stress_planes``).  Half the
+DOFs of the full block: a third of its factorisation and condensation time.
 """
 
 from __future__ import annotations
@@ -27,6 +38,7 @@ import math
 import os
 import time
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import scipy.linalg as la
@@ -103,6 +115,21 @@ def expected_radius(case: Case, a_ref: float) -> float:
     return a / a_ref
 
 
+def has_companion(case: Case) -> bool:
+    """Whether the half block carries the y friction traction by an antisymmetric
+    companion problem (module doc): identical materials in full sliding along ±x, friction
+    axes not along x, y."""
+    fr = case.friction
+    if case.kind == "fretting" or not case.identical_materials or fr.mu1 == 0.0:
+        return False
+    if not (case.load.tangential_mode == "sliding" or case.kind == "sliding_wear"):
+        return False
+    beta = fr.beta % 90.0
+    aligned = fr.isotropic or min(beta, 90.0 - beta) < 1e-12
+    along_x = abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
+    return along_x and not aligned
+
+
 def choose_shape(case: Case) -> str:
     fr = case.friction
     mode = case.load.tangential_mode
@@ -119,14 +146,29 @@ def choose_shape(case: Case) -> str:
         along_x = not case.load.shift_y
     if mode == "sliding" or case.kind in ("sliding_wear", "fretting"):
         along_x = abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
-    if aligned and along_x:
+    if (aligned and along_x) or has_companion(case):
         return "half"
     return "full"
+
+
+class BodyDisplacement(NamedTuple):
+    """A body's displacement on the modelled block (block frame, true units): ``sym``
+    under the load as the symmetry planes see it, ``anti`` the companion's under the
+    antisymmetric part (None without a companion, module doc)."""
+
+    sym: np.ndarray
+    anti: np.ndarray | None = None
+
+    @property
+    def total(self) -> np.ndarray:
+        """The displacement on the modelled block itself (both parts)."""
+        return self.sym if self.anti is None else self.sym + self.anti
 
 
 @dataclass
 class Symmetry:
     shape: str
+    companion: bool = False  # a half block with an antisymmetric companion (module doc)
 
     @property
     def factor(self) -> float:
@@ -163,7 +205,7 @@ class _Core:
     and the condensed one-block compliances C₁(ν) (E = 1) of the contact DOFs."""
 
     def __init__(self, spec: MeshSpec, a_ref: float, comps: tuple[int, ...],
-                 nus: tuple[float, ...], log=None):
+                 nus: tuple[float, ...], log=None, companion: bool = False):
         t0 = time.perf_counter()
         self.mesh = block_mesh(spec, a_ref)
         t_mesh = time.perf_counter()
@@ -179,6 +221,14 @@ class _Core:
             fixed[3 * np.nonzero(np.abs(nodes[1]) < tol)[0] + 1] = True
         self.fixed = fixed
         self.free = np.nonzero(~fixed)[0]
+        # the companion's supports: the same bottom, the mirror plane Y = 0 holding u_x, u_z
+        self.free_anti = None
+        if companion:
+            plane = np.nonzero(np.abs(nodes[1]) < tol)[0]
+            fixed_anti = np.zeros(space.ndofs, dtype=bool)
+            fixed_anti[(3 * bottom[:, None] + np.arange(3)).ravel()] = True
+            fixed_anti[(3 * plane[:, None] + np.array([0, 2])).ravel()] = True
+            self.free_anti = np.nonzero(~fixed_anti)[0]
         self.surface = ContactSurface(space, spec.r_ref * a_ref, (0, 1, 2), fixed)
         self.top = ContactSurface(space, np.inf, (2,), fixed)
         self.cidx = np.nonzero(np.isin(self.surface.dof_comp, comps))[0]
@@ -188,6 +238,7 @@ class _Core:
             raise FemError("internal error: a condensed surface DOF is fixed")
         # stiffness, factorisation and condensation per distinct Poisson's ratio
         self.factor: dict[float, Factorization] = {}
+        self.factor_anti: dict[float, Factorization] = {}  # the companion's (no condensation)
         self.stiffness: dict[float, object] = {}  # rows of K (E = 1) at the fixed DOFs
         self.C1: dict[float, np.ndarray] = {}
         t_asm = t_fac = t_cond = 0.0
@@ -202,7 +253,14 @@ class _Core:
             self.C1[nu] = F.schur_inverse()
             td = time.perf_counter()
             self.factor[nu] = F
-            t_asm, t_fac, t_cond = t_asm + tb - ta, t_fac + tc - tb, t_cond + td - tc
+            t_anti = 0.0
+            if self.free_anti is not None:
+                te = time.perf_counter()
+                fa = self.free_anti
+                self.factor_anti[nu] = Factorization(K[fa][:, fa].tocsr())
+                t_anti = time.perf_counter() - te
+            t_asm, t_cond = t_asm + tb - ta, t_cond + td - tc
+            t_fac += tc - tb + t_anti
             if log:
                 log(f"nu={nu}: {Kff.shape[0]} free DOFs, assembly {tb - ta:.1f} s, "
                     f"factorisation {tc - tb:.1f} s, "
@@ -212,29 +270,30 @@ class _Core:
         self.uses = 0
 
     def release(self) -> None:
-        for F in self.factor.values():
+        for F in (*self.factor.values(), *self.factor_anti.values()):
             F.free()
         self.factor.clear()
+        self.factor_anti.clear()
 
 
 _CORE: list = []  # [(key, core)]: the last core, kept for the next case of a sweep
 
 
 def _core(spec: MeshSpec, a_ref: float, comps: tuple[int, ...], nus: tuple[float, ...],
-          log=None) -> _Core:
+          log=None, companion: bool = False) -> _Core:
     """The core for these parameters, reused from the previous call when they match.
 
     A sweep (μ, β, Q values) runs the same mesh, materials and contact DOFs again and
     again: the mesh, factorisation and condensation are then done once.  Only the last
     core is kept; ``CONTACT_VV_FEM_CACHE=0`` disables the reuse.
     """
-    key = (spec.key(), float(a_ref), tuple(comps), tuple(sorted(set(nus))))
+    key = (spec.key(), float(a_ref), tuple(comps), tuple(sorted(set(nus))), companion)
     if _cache_enabled() and _CORE and _CORE[0][0] == key and _CORE[0][1].factor:
         core = _CORE[0][1]
     else:
         while _CORE:
             _CORE.pop()[1].release()
-        core = _Core(spec, a_ref, comps, nus, log)
+        core = _Core(spec, a_ref, comps, nus, log, companion)
         if _cache_enabled():
             _CORE.append((key, core))
     core.uses += 1
@@ -261,7 +320,7 @@ class FemModel:
         # final contact of radius a_max is resolved with about the same elements per radius
         r_fine = min(1.25, r_c) if self.a_max > 1.25 else r_c
         self.shape = choose_shape(case)
-        self.sym = Symmetry(self.shape)
+        self.sym = Symmetry(self.shape, companion=has_companion(case))
         grid = case.grid
         L_mm, H_mm = fem.block * self.a_ref, fem.depth * self.a_ref
         half_grid = 0.5 * max(grid.Lx, grid.Ly) + max(abs(case.stress.x0), abs(case.stress.y0))
@@ -292,7 +351,11 @@ class FemModel:
             self.law_mode == "sliding" and case.identical_materials
         )
         comps = (2,) if normal_only else (0, 1, 2)
-        core = _core(self.spec, self.a_ref, comps, (case.a.nu, case.b.nu), log)
+        if self.sym.companion and not normal_only:
+            raise FemError("internal error: an antisymmetric companion needs a normal "
+                           "contact problem")
+        core = _core(self.spec, self.a_ref, comps, (case.a.nu, case.b.nu), log,
+                     companion=self.sym.companion)
         self.core = core
         self.mesh, self.space = core.mesh, core.space
         self.fixed, self.free = core.fixed, core.free
@@ -340,32 +403,46 @@ class FemModel:
 
     # ------------------------------------------------------------------ full solves
 
-    def body_displacements(self, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def body_displacements(self, f: np.ndarray, f_y: np.ndarray | None = None
+                           ) -> tuple[BodyDisplacement, BodyDisplacement]:
         """Block-frame displacements (E = 1 scaling removed) of bodies a and b.
 
         ``f``: nodal forces on body a at all surface DOFs (global frame).  Returns the true
-        displacement fields (3 * nnodes,) of a and b, each in its own block frame.
+        displacement fields (3 * nnodes,) of a and b, each in its own block frame.  With a
+        companion (module doc) ``f_y``, the y forces on body a at every surface node (the
+        mirror plane's too, whose u_y the block holds), load the companion, and the y
+        forces of ``f`` are left out of the block's load.
         """
         case = self.case
+        surf = self.surface
+        if self.sym.companion and f_y is None:
+            raise ValueError("a model with a companion needs the y forces f_y")
         out = []
-        for body, sign_z in ((case.a, -1.0), (case.b, None)):
+        for body, sign in ((case.a, 1.0), (case.b, -1.0)):
             F = np.zeros(self.space.ndofs)
-            if sign_z is None:  # body b carries −f, block frame = global frame
-                F[self.surface.dofs] = -f
-            else:  # body a carries f; block frame z = −global z
-                F[self.surface.dofs] = np.where(self.surface.dof_comp == 2, -f, f)
+            # body b carries −f in the global frame; body a f, its block frame z = −z
+            F[surf.dofs] = sign * np.where((surf.dof_comp == 2) & (sign > 0), -f, f)
+            anti = None
+            if self.sym.companion:
+                F[1::3] = 0.0
+                F_anti = np.zeros(self.space.ndofs)
+                F_anti[3 * surf.nodes + 1] = sign * f_y
+                fa = self.core.free_anti
+                anti = np.zeros(self.space.ndofs)
+                anti[fa] = self.core.factor_anti[body.nu].solve(F_anti[fa]) / body.E
             u = np.zeros(self.space.ndofs)
             u[self.free] = self.factor[body.nu].solve(F[self.free]) / body.E
-            out.append(u)
+            out.append(BodyDisplacement(u, anti))
         return out[0], out[1]
 
-    def support_reaction(self, u: np.ndarray, body) -> float:
+    def support_reaction(self, u: BodyDisplacement, body) -> float:
         """Total vertical force of the block's supports on a body (symmetry included).
 
         ``u``: the body's true displacement (block frame).  Equilibrium of the whole FE
-        block: equals the transmitted normal load P.
+        block: equals the transmitted normal load P.  A companion's vertical reactions
+        are odd in y and cancel over the whole block.
         """
-        r = body.E * (self.stiffness[body.nu] @ u)  # reactions at the fixed DOFs
+        r = body.E * (self.stiffness[body.nu] @ u.sym)  # reactions at the fixed DOFs
         fixed = np.nonzero(self.fixed)[0]
         z = (fixed % 3) == 2
         return self.sym.factor * float(r[z].sum())

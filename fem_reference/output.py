@@ -49,6 +49,7 @@ from cases.result import OPEN, STICK, Plane, StepResult, vm_max_location
 
 from .contact import Evaluation
 from .contact_zone import ContactZone, closing_measure, contact_zone
+from .model import BodyDisplacement
 from .run import OutputState, Run
 from .stress_planes import AXIS_FIT_WINDOW, axis_peak, stress_planes
 from .vtu import fields_mesh
@@ -97,28 +98,35 @@ def step_output(run: Run, out: OutputState, *, t0: float, vtu: bool = True) -> S
     scalars = step_scalars(run, out, zone, tractions, planes, axis)
     scalars.update(_body_scalars(run, u_body, mat, t0, scalars["P"],
                                  (scalars["Qx"], scalars["Qy"])))
-    mesh = fields_mesh(m.space, u_body, mat.nu, mat.E) if vtu else None
+    mesh = fields_mesh(m.space, u_body.total, mat.nu, mat.E) if vtu else None
     g = case.grid
     result = StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(), surface=surface,
                         planes=planes)
     return StepOutput(result=result, tables=tables, mesh=mesh)
 
 
-def body_displacements(run: Run, ev: Evaluation) -> tuple[np.ndarray, np.ndarray]:
+def body_displacements(run: Run, ev: Evaluation
+                       ) -> tuple[BodyDisplacement, BodyDisplacement]:
     """Full FE displacements of bodies a and b (block frames) under the nodal tractions
-    of ``ev`` (forces ``Gᵀ W λ``, :mod:`fem_reference.nodal`)."""
+    of ``ev`` (forces ``Gᵀ W λ``, :mod:`fem_reference.nodal`; with a companion also the
+    y forces at every surface node, :meth:`fem_reference.model.FemModel.body_displacements`)."""
     w = run.nodes.w
     wt = np.concatenate([w * ev.t[:, 0], w * ev.t[:, 1], w * ev.pn])
-    return run.model.body_displacements(run.G_all.T @ wt)
+    f_y = run.Binv @ (w * ev.t[:, 1]) if run.model.sym.companion else None
+    return run.model.body_displacements(run.G_all.T @ wt, f_y)
 
 
-def probe_gap(run: Run, ua: np.ndarray, ub: np.ndarray) -> np.ndarray:
+def probe_gap(run: Run, ua: BodyDisplacement, ub: BodyDisplacement) -> np.ndarray:
     """The normal gap g_n = h + w_a + w_b − δ + u_n at the probes from the full FE
-    displacements of both bodies."""
+    displacements of both bodies (a companion's u_z is odd under the mirror)."""
     nodes = run.model.top.nodes
-    Ntop = run.sampling.Ntop
-    uza = Ntop @ ua.reshape(-1, 3)[nodes, 2]
-    uzb = Ntop @ ub.reshape(-1, 3)[nodes, 2]
+    Ntop, sy = run.sampling.Ntop, run.sampling.sy
+
+    def u_z(u: BodyDisplacement) -> np.ndarray:
+        uz = Ntop @ u.sym.reshape(-1, 3)[nodes, 2]
+        return uz if u.anti is None else uz + sy * (Ntop @ u.anti.reshape(-1, 3)[nodes, 2])
+
+    uza, uzb = u_z(ua), u_z(ub)
     pr = run.probes
     return pr.h + pr.wear_a + pr.wear_b - run.delta + (-uza - uzb)
 
@@ -127,8 +135,10 @@ def recover_tractions(run: Run, ev: Evaluation) -> Tractions:
     """The nodal tractions of ``ev`` and their values at the probes (linear on the
     facets' sub-triangles, :meth:`fem_reference.surface.ContactSurface.sub_interpolation`)."""
     Nsub, sampling = run.sampling.Nsub, run.sampling
+    # with a companion the y traction is even under the mirror (module doc of .model)
+    sy = 1.0 if run.model.sym.companion else sampling.sy
     return Tractions(pn_nodes=ev.pn, pn=Nsub @ ev.pn, px=sampling.sx * (Nsub @ ev.t[:, 0]),
-                     py=sampling.sy * (Nsub @ ev.t[:, 1]))
+                     py=sy * (Nsub @ ev.t[:, 1]))
 
 
 def surface_fields(run: Run, out: OutputState, zone: ContactZone, tractions: Tractions,
@@ -183,7 +193,7 @@ def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tract
     if m.shape == "quarter":
         Q = [0.0, 0.0]
     elif m.shape == "half":
-        Q = [sym.factor * Q[0], 0.0]
+        Q = [sym.factor * Q[0], sym.factor * Q[1] if sym.companion else 0.0]
     wear_q = nodes.wear_a + nodes.wear_b
     wear_probe = run.probes.wear_a + run.probes.wear_b
     return {
@@ -203,7 +213,7 @@ def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tract
     }
 
 
-def _body_scalars(run: Run, u_body: np.ndarray, mat: Body, t0: float, P: float,
+def _body_scalars(run: Run, u_body: BodyDisplacement, mat: Body, t0: float, P: float,
                   Q: tuple[float, float]) -> dict[str, float]:
     """``wall_s`` and the state scalars: the approach and the shift (the half-space's:
     the blocks' δ plus c P and g_t,o plus c_t Q, :mod:`fem_reference.far_field`;

@@ -34,6 +34,7 @@ class Run:
     nodes: Points  # contact points: the surface nodes (modified coefficients, dual weights)
     probes: Points  # output probes (weights 0)
     G_all: sp.csr_matrix  # all surface DOFs -> modified coefficients at the nodes
+    Binv: sp.csr_matrix  # modified coefficients -> nodal values (forces: Binv W λ per node)
     Nmod: sp.csr_matrix  # modified coefficients -> field values at the probes (N Bᵀ)
     sampling: ProbeSampling
     locator: PointLocator  # finds the elements of stress sample points
@@ -77,7 +78,7 @@ def start_run(model: FemModel) -> Run:
     probes = Points(G=surf.operator(sampling.N)[:, model.cidx].tocsr(), w=np.zeros(xy.shape[0]),
                     xy=xy, h=(xy**2).sum(axis=1) / (2 * R), inside=sampling.found)
     u, delta = hertz_start(model, nodes)
-    return Run(model=model, nodes=nodes, probes=probes, G_all=G_all,
+    return Run(model=model, nodes=nodes, probes=probes, G_all=G_all, Binv=Binv.tocsr(),
                Nmod=(sampling.N @ B.T).tocsr(), sampling=sampling,
                locator=PointLocator(model.space),
                u=u, delta=delta, D=np.zeros(2), lin=StiffenedSolver(model.Crel),

@@ -13,29 +13,41 @@ import numpy as np
 
 from cases.result import Plane, von_mises
 
-from .model import FemModel
+from .model import BodyDisplacement, FemModel
 from .stresses import COMPONENTS, PointLocator, sample_stresses
 
 AXIS_FIT_WINDOW = 0.3  # half-width of the axis σ_VM fit window, in contact semi-widths
 AXIS_REFINEMENT = 8  # depth samples on the axis per plane depth interval
 
 
-def stress_at(model: FemModel, locator: PointLocator, u: np.ndarray, nu: float, E: float,
-              xyz: np.ndarray) -> dict[str, np.ndarray]:
+def stress_at(model: FemModel, locator: PointLocator, u: BodyDisplacement, nu: float,
+              E: float, xyz: np.ndarray) -> dict[str, np.ndarray]:
     """Stress components and σ_VM in the reported frame (x, y, depth) at global (x, y,
-    depth) ``xyz`` (n, 3), of the body with block-frame displacement ``u`` and (ν, E)."""
+    depth) ``xyz`` (n, 3), of the body with block-frame displacement ``u`` and (ν, E).
+
+    The mirror image of the symmetric solution keeps σ_xx, σ_yy, σ_zz, σ_xz and changes
+    the sign of σ_xy, σ_yz (sign 0 on the mirror plane: they vanish there); the
+    companion's (antisymmetric) image does the opposite, its σ_xx, σ_yy, σ_zz, σ_xz
+    vanishing on the plane (:mod:`fem_reference.model`)."""
     mapped, sx, sy = model.sym.map(xyz[:, :2])
     pts = np.column_stack([mapped, -xyz[:, 2]])
-    sig = sample_stresses(model.space, locator, u, nu, E, pts)
+    sig = sample_stresses(model.space, locator, u.sym, nu, E, pts)
     sig["sxy"] = sig["sxy"] * sx * sy
     sig["sxz"] = -sig["sxz"] * sx  # reported z is the depth (= −Z)
     sig["syz"] = -sig["syz"] * sy
+    if u.anti is not None:  # a half block: sx = 1
+        anti = sample_stresses(model.space, locator, u.anti, nu, E, pts)
+        for c in ("sxx", "syy", "szz"):
+            sig[c] = sig[c] + anti[c] * sy
+        sig["sxy"] = sig["sxy"] + anti["sxy"] * sx
+        sig["sxz"] = sig["sxz"] - anti["sxz"] * sx * sy
+        sig["syz"] = sig["syz"] - anti["syz"]
     sig["vm"] = von_mises(*(sig[c] for c in COMPONENTS))
     return sig
 
 
-def stress_planes(model: FemModel, locator: PointLocator, u: np.ndarray, nu: float, E: float
-                  ) -> tuple[dict[str, Plane], dict[str, np.ndarray]]:
+def stress_planes(model: FemModel, locator: PointLocator, u: BodyDisplacement, nu: float,
+                  E: float) -> tuple[dict[str, Plane], dict[str, np.ndarray]]:
     """(planes ``{"xz", "yz"}``, axis table ``{"z", components, "vm"}``) of the body with
     displacement ``u`` and (ν, E)."""
     case = model.case

@@ -70,8 +70,9 @@ def test_estimate_builds_the_solvers_mesh_spec(monkeypatch):
     class Stop(Exception):
         pass
 
-    def fake_core(spec, a_ref, comps, nus, log=None):
-        seen.update(spec=spec, comps=tuple(comps), nus=tuple(sorted(set(nus))))
+    def fake_core(spec, a_ref, comps, nus, log=None, companion=False):
+        seen.update(spec=spec, comps=tuple(comps), nus=tuple(sorted(set(nus))),
+                    companion=companion)
         raise Stop
 
     monkeypatch.setattr(model, "_core", fake_core)
@@ -83,6 +84,7 @@ def test_estimate_builds_the_solvers_mesh_spec(monkeypatch):
             spec, info = cost.mesh_spec(case)
             assert spec == seen["spec"], (name, case.param)
             assert info["comps"] == seen["comps"] and info["nus"] == seen["nus"]
+            assert info["companion"] == seen["companion"], (name, case.param)
 
 
 def test_estimate_never_meshes(monkeypatch):

@@ -1,21 +1,20 @@
 r"""The CI accuracy gates (issue 5, item 6) and the regression baselines.
 
 Every bundled case runs in its quick variant through the half-space solver and the
-analytic references, and hertz, cattaneo_mindlin, sliding_friction, pin_on_disk and
-dissimilar also through the FEM reference, exactly as ``contact-vv run`` does it; every
-tolerance of ``metrics.csv`` must hold (``contact-vv gate`` exits 0), the report must
-show every case, and the key numbers must not drift from ``tests/baselines/*.csv``
+analytic references, and hertz, cattaneo_mindlin, sliding_friction, pin_on_disk,
+pin_on_disk_orthotropic and dissimilar also through the FEM reference, exactly as
+``contact-vv run`` does it; every tolerance of ``metrics.csv`` must hold (``contact-vv
+gate`` exits 0), the report must show every case, and the key numbers must not drift
+from ``tests/baselines/*.csv``
 (relative drift 1e-6: the runs are deterministic, tests/test_determinism.py).  Update
 the baselines explicitly with
 
     contact-vv run --all --quick --solver ic,analytic --out results
-    contact-vv run hertz cattaneo_mindlin sliding_friction pin_on_disk dissimilar \
-        --quick --out results
+    contact-vv run hertz cattaneo_mindlin sliding_friction pin_on_disk \
+        pin_on_disk_orthotropic dissimilar --quick --out results
     contact-vv gate --out results --update-baseline tests/baselines
 
-Not here: the FEM on pin_on_disk_orthotropic (its quick run alone takes 7 min; it passes
-the gate in ``contact-vv run --all --quick``, the issue notes have its numbers).  The
-FEM runs fretting only on request (tests/test_fem_fretting.py checks its first cycle).
+The FEM runs fretting only on request (tests/test_fem_fretting.py checks its first cycle).
 """
 
 from __future__ import annotations
@@ -30,7 +29,8 @@ from reports import layout
 from reports.cli import main
 
 BASELINES = Path(__file__).resolve().parent / "baselines"
-WITH_FEM = ("hertz", "cattaneo_mindlin", "sliding_friction", "pin_on_disk", "dissimilar")
+WITH_FEM = ("hertz", "cattaneo_mindlin", "sliding_friction", "pin_on_disk",
+            "pin_on_disk_orthotropic", "dissimilar")
 
 
 @pytest.fixture(scope="module")
