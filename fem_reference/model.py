@@ -28,7 +28,7 @@ carries it as a *companion* problem, the same half block with the mirror conditi
 swapped (u_x = u_z = 0 on Y = 0, u_y free), factorised once more but never condensed;
 the displacement of a body is the sum of the two solutions (:class:`BodyDisplacement`),
 and the companion's components change sign under the mirror where the symmetric
-solution's do not (:meth:`Symmetry.map`, ``fem_reference.stress_planes``).  Half the
+solution's do not (``fem_reference.stress_planes``, ``fem_reference.output``).  Half the
 DOFs of the full block: a third of its factorisation and condensation time.
 """
 
@@ -124,10 +124,17 @@ def has_companion(case: Case) -> bool:
         return False
     if not (case.load.tangential_mode == "sliding" or case.kind == "sliding_wear"):
         return False
+    return _slides_along_x(case) and not _axes_aligned(fr)
+
+
+def _axes_aligned(fr) -> bool:
+    """Isotropic friction, or tribological axes along x and y."""
     beta = fr.beta % 90.0
-    aligned = fr.isotropic or min(beta, 90.0 - beta) < 1e-12
-    along_x = abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
-    return along_x and not aligned
+    return fr.isotropic or min(beta, 90.0 - beta) < 1e-12
+
+
+def _slides_along_x(case: Case) -> bool:
+    return abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
 
 
 def choose_shape(case: Case) -> str:
@@ -135,8 +142,7 @@ def choose_shape(case: Case) -> str:
     mode = case.load.tangential_mode
     if fr.mu1 == 0.0 and fr.mu2 == 0.0:
         return "quarter"
-    beta = fr.beta % 90.0
-    aligned = fr.isotropic or min(beta, 90.0 - beta) < 1e-12
+    aligned = _axes_aligned(fr)
     if mode == "none" and case.kind == "static" and aligned:
         return "quarter"
     along_x = False
@@ -145,7 +151,7 @@ def choose_shape(case: Case) -> str:
     elif mode == "shift":
         along_x = not case.load.shift_y
     if mode == "sliding" or case.kind in ("sliding_wear", "fretting"):
-        along_x = abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
+        along_x = _slides_along_x(case)
     if (aligned and along_x) or has_companion(case):
         return "half"
     return "full"
