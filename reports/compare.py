@@ -51,7 +51,7 @@ from scipy import ndimage
 from scipy.interpolate import RegularGridInterpolator
 
 from cases.model import Case
-from cases.result import RunResult, StepResult, vm_max_location
+from cases.result import SLIP, STICK, RunResult, StepResult, vm_max_location
 
 from . import maxima, solvers, uncertainty
 from . import tolerances as tol
@@ -60,8 +60,6 @@ from .cycles import compare_tables, friction_scale
 METRICS_COLUMNS = ["quantity", "pair", "metric", "value", "tolerance", "passed"]
 EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key", "status", "note"]
 _TINY = 1e-12
-#: contact states of the ``state`` field (cases.result): stick, slip
-STICK, SLIP = 1, 2
 #: the metric of the max over the stick band (module doc): written, never gated
 KINK = "kink"
 KINK_NOTE = ("max within one cell of the stick-slip boundary, where the traction has a "
