@@ -2,14 +2,21 @@
 tractions carry a given resultant Q (Eq. 37).
 
 The resultant is a monotone function of the shift; it is found by a quasi-Newton
-(Broyden) iteration on F(g_t,o) = sum(p_t) dA - Q, refreshed by finite differences when
-a step makes no progress (the secant can be nearly singular under strong orthotropy).
-Each evaluation of F is a tangential solve (Eq. 16).  Far from the answer those solves
-need no more accuracy than F has (inexact Newton): they stop at a residual of
-INNER_TOL_FACTOR x the relative mismatch, at most INNER_TOL_MAX.  Once the mismatch is
-met, or an inexact step fails to reduce it, every later solve is exact, and exact means
-FINAL_TOL_FACTOR x the tolerance: the resultant sums the tractions' error over the whole
-contact, so the tractions must be a little tighter than the resultant's tolerance.
+(Broyden) iteration on F(g_t,o) = sum(p_t) dA - Q.  Each evaluation of F is a tangential
+solve (Eq. 16).  Far from the answer those solves need no more accuracy than F has
+(inexact Newton): they stop at a residual of INNER_TOL_FACTOR x the relative mismatch, at
+most INNER_TOL_MAX.  Once the mismatch is met, or an inexact step fails to reduce it,
+every later solve is exact, and exact means FINAL_TOL_FACTOR x the tolerance: the
+resultant sums the tractions' error over the whole contact, so the tractions must be a
+little tighter than the resultant's tolerance.
+
+A step is kept only if it reduces |F| by the fraction SUFFICIENT_DECREASE at least (an
+inexact solve started from the previous tractions may meet its tolerance at once and
+return F unchanged; a secant update from such a step would flatten J along the step).
+A step that fails, solved exactly, is undone: J is refreshed by finite differences at
+the last kept shift (the secant can be nearly singular under strong orthotropy), and if
+J was fresh already the step length is halved (a full step can overshoot into gross slip,
+where F is flat and no Jacobian points back).
 """
 
 from __future__ import annotations
@@ -25,6 +32,7 @@ INNER_TOL_FACTOR = 1e-2
 INNER_TOL_MAX = 1e-4
 FINAL_TOL_FACTOR = 0.1
 MAX_NEWTON = 100
+SUFFICIENT_DECREASE = 1e-4
 
 Solve = Callable[[np.ndarray, tuple[np.ndarray, np.ndarray] | None, float], TangentialSolution]
 
@@ -45,7 +53,7 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
 
     sol, F = evaluate(zeta, p0, max(INNER_TOL_MAX, exact_tol))
     iters, exact = sol.iterations, INNER_TOL_MAX <= exact_tol
-    final = exact
+    final, fresh, step = exact, False, max_step
     for _ in range(MAX_NEWTON):
         if np.hypot(*F) <= tol * scale * 10:
             if exact:
@@ -54,22 +62,30 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
             iters, exact, final = iters + sol.iterations, True, True
             continue
         dz = -np.linalg.solve(J, F)
-        if np.hypot(*dz) > max_step:  # the secant flattens near gross slip
-            dz *= max_step / np.hypot(*dz)
-        zeta = zeta + dz
+        if np.hypot(*dz) > step:  # the secant flattens near gross slip
+            dz *= step / np.hypot(*dz)
         t = exact_tol if final else max(exact_tol, min(
             INNER_TOL_MAX, INNER_TOL_FACTOR * np.hypot(*F) / scale))
-        sol, F_new = evaluate(zeta, (sol.p_x, sol.p_y), t)
-        iters, exact = iters + sol.iterations, t <= exact_tol
-        if np.hypot(*F_new) >= np.hypot(*F) and not exact:
-            sol, F_new = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
-            iters, exact, final, t = iters + sol.iterations, True, True, exact_tol
-        if np.hypot(*F_new) >= np.hypot(*F):
-            J, probe_iters = _fd_jacobian(evaluate, zeta, F_new, sol, 1e-3 * max_step, t)
-            iters += probe_iters
-        else:
+        trial, F_new = evaluate(zeta + dz, (sol.p_x, sol.p_y), t)
+        iters, trial_exact = iters + trial.iterations, t <= exact_tol
+        bound = (1.0 - SUFFICIENT_DECREASE) * np.hypot(*F)
+        if np.hypot(*F_new) > bound and not trial_exact:
+            trial, F_new = evaluate(zeta + dz, (sol.p_x, sol.p_y), exact_tol)
+            iters, trial_exact, final = iters + trial.iterations, True, True
+        if np.hypot(*F_new) <= bound:
             J = J + np.outer(F_new - F - J @ dz, dz) / float(dz @ dz)  # Broyden update
-        F = F_new
+            zeta, sol, F, exact = zeta + dz, trial, F_new, trial_exact
+            fresh, step = False, max_step
+            continue
+        if not exact:  # judge the step against an exact F at the kept shift
+            sol, F = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
+            iters, exact, final = iters + sol.iterations, True, True
+            continue
+        if fresh:
+            step = 0.5 * min(step, np.hypot(*dz))
+        else:
+            J, probe_iters = _fd_jacobian(evaluate, zeta, F, sol, 1e-3 * max_step, exact_tol)
+            iters, fresh = iters + probe_iters, True
     raise ContactNotConverged(
         f"tangential load control did not converge: |Q - Q_target| = {np.hypot(*F):.3e} N")
 
