@@ -104,6 +104,17 @@ def _checked(table: str, cls, d: dict, *, choices: dict | None = None,
     return obj
 
 
+def _fem(d: dict) -> FemSettings:
+    fem = _checked("fem", FemSettings, d, choices={"order": (1, 2)},
+                   positive=("block", "depth", "h", "penalty"))
+    if fem.h_surface is not None:
+        check_positive(fem.h_surface, "fem.h_surface")
+        if fem.h_surface > fem.h:
+            raise CaseError(f"fem.h_surface = {fem.h_surface!r}: must not exceed fem.h = "
+                            f"{fem.h!r} (it refines the contact surface)")
+    return fem
+
+
 def _sliding_wear(d: dict, load: Load) -> SlidingWear:
     d = dict(d, output_s=tuple(float(v) for v in d.get("output_s", ())))
     sliding_wear = _checked("sliding_wear", SlidingWear, d, positive=("step", "distance"))
@@ -204,8 +215,7 @@ def build(data: dict, *, name: str, source: str, param: str) -> Case:
         sliding_wear=_sliding_wear(data.get("sliding_wear", {}), load)
         if kind == "sliding_wear" else None,
         fretting=_fretting(data.get("fretting", {}), friction) if kind == "fretting" else None,
-        fem=_checked("fem", FemSettings, data.get("fem", {}), choices={"order": (1, 2)},
-                     positive=("block", "depth", "h", "penalty")),
+        fem=_fem(data.get("fem", {})),
         tolerances=_tolerances(data.get("tolerances", {})),
         not_converged=_not_converged(data.get("not_converged", {})),
         description=data.get("description", ""),

@@ -199,7 +199,23 @@ class FemSettings:
     depth: float = 20.0  # block depth H / a0
     h: float = 0.125  # element size in the contact zone / a0
     order: int = 2
-    penalty: float = 100.0  # normal penalty in units of E*/h
+    penalty: float = 100.0  # normal penalty in units of E*/h_contact
+    h_surface: float | None = None  # element size at the contact surface / a0 (None: h)
+
+    @property
+    def h_contact(self) -> float:
+        """The element size at the contact surface / a0: ``h_surface``, else ``h``."""
+        return self.h if self.h_surface is None else self.h_surface
+
+    @property
+    def surface_layer(self) -> float | None:
+        """``h_surface`` where it refines the surface (below ``h``), else None."""
+        return self.h_surface if self.h_surface is not None and self.h_surface < self.h else None
+
+    def refined(self, factor: float) -> FemSettings:
+        """These settings with every element size divided by ``factor``."""
+        hs = None if self.h_surface is None else self.h_surface / factor
+        return replace(self, h=self.h / factor, h_surface=hs)
 
 
 @dataclass(frozen=True)

@@ -115,7 +115,7 @@ import numpy as np
 from cases.model import Case, FemSettings
 from cases.result import Cost
 
-from .mesh import MeshSpec
+from .mesh import SURFACE_GRADING, MeshSpec
 from .model import FemModel, choose_shape, expected_radius, has_companion, reference_length
 
 C_TET = 0.225  # mean tetrahedron volume / size³ of gmsh's meshes
@@ -158,7 +158,7 @@ def mesh_spec(case: Case) -> tuple[MeshSpec | None, dict]:
             "comps": (2,) if normal_only else (0, 1, 2),
             "nus": tuple(sorted({case.a.nu, case.b.nu})), "companion": has_companion(case)}
     kw = dict(shape=shape, L=fem.block, H=fem.depth, h=fem.h, r_ref=r_c, z_ref=z_ref,
-              grading=0.25, h_max=fem.block / 4.0, r_fine=r_fine)
+              grading=0.25, h_max=fem.block / 4.0, r_fine=r_fine, h_surface=fem.surface_layer)
     try:
         spec = MeshSpec(**kw)
     except Exception:  # invalid parameters: estimate them all the same
@@ -172,9 +172,12 @@ def mesh_spec(case: Case) -> tuple[MeshSpec | None, dict]:
 
 def _size(r: np.ndarray, z: np.ndarray, p: dict) -> np.ndarray:
     """The mesh-size field of :func:`fem_reference.mesh._generate` at radius r, depth z."""
-    inner = p["h"]
+    scale = 1.0
     if p["r_fine"] is not None and p["r_fine"] < p["r_ref"]:
-        inner = p["h"] * np.maximum(1.0, np.hypot(r, z) / p["r_fine"])
+        scale = np.maximum(1.0, np.hypot(r, z) / p["r_fine"])
+    inner = p["h"] * scale
+    if p["h_surface"] is not None and p["h_surface"] < p["h"]:
+        inner = np.minimum(inner, p["h_surface"] * scale + SURFACE_GRADING * z)
     d = np.hypot(np.maximum(r - p["r_ref"], 0.0), np.maximum(z - p["z_ref"], 0.0))
     return np.minimum(inner + p["grading"] * d, p["h_max"])
 
@@ -217,13 +220,22 @@ def _arc(r: np.ndarray, L: float, shape: str) -> np.ndarray:
     return r * np.maximum(theta, 0.0) * _SECTORS[shape]
 
 
+def _surface_layer(p: dict) -> tuple[float, ...]:
+    """Depths that split the refined surface layer (``h_surface``) into panels."""
+    hs, h = p["h_surface"], p["h"]
+    if hs is None or hs >= h:
+        return ()
+    depth = (h - hs) / SURFACE_GRADING
+    return tuple(depth * k / 4.0 for k in range(1, 5))
+
+
 def element_count(p: dict) -> float:
     """Tetrahedra of the block mesh of parameters ``p`` (a MeshSpec's fields):
     ``∫ dV / (C_TET size³)``."""
     L, H = p["L"], p["H"]
     fine = (p["r_fine"],) if p["r_fine"] else ()
     r, wr = _rule(math.sqrt(2.0) * L, p["r_ref"], p, (L, *fine))
-    z, wz = _rule(H, p["z_ref"], p, fine)
+    z, wz = _rule(H, p["z_ref"], p, (*fine, *_surface_layer(p)))
     R, Z = np.meshgrid(r, z, indexing="ij")
     with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
         density = _arc(R, L, p["shape"]) / _size(R, Z, p) ** 3
@@ -364,6 +376,8 @@ def _drivers(case: Case, base: Breakdown) -> tuple[tuple[str, ...], tuple[str, .
         keys = tuple(k for _, k in sorted(found)) or ("fem.h", "fem.block", "fem.depth")
         return keys, keys
     moves = [("fem.h", 0.5), ("fem.block", 2.0), ("fem.depth", 2.0)]
+    if case.fem.h_surface is not None:
+        moves.append(("fem.h_surface", 0.5))
     if case.kind == "sliding_wear" and case.sliding_wear is not None:
         moves += [("sliding_wear.distance", 2.0), ("sliding_wear.step", 0.5)]
     if case.kind == "fretting" and case.fretting is not None:

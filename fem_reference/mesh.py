@@ -10,7 +10,11 @@ The element size is ``h`` inside the refined zone (a cylinder of radius ``r_ref`
 around the Z axis, from the surface down to depth ``z_ref``) and grows linearly with
 the distance ``d`` from that zone, ``size = h + grading * d``, capped at ``h_max``.
 With ``r_fine < r_ref`` (a contact that grows, e.g. by wear) the size inside the zone is
-``h`` within the distance ``r_fine`` of the origin and ``h ρ / r_fine`` beyond.
+``h`` within the distance ``r_fine`` of the origin and ``h ρ / r_fine`` beyond.  With
+``h_surface < h`` the zone is refined further towards the contact surface: its size is
+``min(h, h_surface + SURFACE_GRADING |Z|)`` (each scaled by ``max(1, ρ / r_fine)`` as
+above), so the contact tractions are resolved at ``h_surface`` while the subsurface
+stresses keep ``h`` from the depth ``(h - h_surface) / SURFACE_GRADING`` down.
 gmsh runs single-threaded (HXT with several threads is not bit-reproducible).
 
 Cache directory: ``$CONTACT_VV_CACHE/fem-meshes`` if the variable is set, else
@@ -32,6 +36,7 @@ from cases.result import atomic_path
 
 SHAPES = ("quarter", "half", "full")
 _MESH_VERSION = 2  # bump when the meshing recipe changes
+SURFACE_GRADING = 0.25  # size growth per unit depth below the contact surface (h_surface)
 
 
 class MeshError(RuntimeError):
@@ -51,6 +56,7 @@ class MeshSpec:
     grading: float = 0.25  # size growth per unit distance from the refined zone
     h_max: float = 4.0  # largest element size
     r_fine: float | None = None  # radius of the h zone (None: r_ref); beyond, h ∝ distance
+    h_surface: float | None = None  # element size at the contact surface (None: h)
 
     def __post_init__(self) -> None:
         if self.shape not in SHAPES:
@@ -66,14 +72,20 @@ class MeshSpec:
                 f"refined zone (r_ref = {self.r_ref}, z_ref = {self.z_ref}) does not fit in the "
                 f"block (L = {self.L}, H = {self.H}); enlarge fem.block / fem.depth"
             )
+        if self.h_surface is not None and not (0 < self.h_surface <= self.h):
+            raise MeshError(f"mesh parameter h_surface = {self.h_surface!r}: must lie in "
+                            f"(0, h = {self.h}]")
         if self.h >= self.r_ref:
             raise MeshError(f"element size h = {self.h} must be below r_ref = {self.r_ref}")
 
     def key(self) -> str:
         import gmsh
 
+        fields = asdict(self)
+        if fields["h_surface"] is None:  # the meshes cached before the key existed
+            del fields["h_surface"]
         payload = json.dumps(
-            {**asdict(self), "version": _MESH_VERSION, "gmsh": gmsh.__version__}, sort_keys=True
+            {**fields, "version": _MESH_VERSION, "gmsh": gmsh.__version__}, sort_keys=True
         )
         return hashlib.sha256(payload.encode()).hexdigest()[:20]
 
@@ -94,9 +106,12 @@ def _generate(spec: MeshSpec) -> tuple[np.ndarray, np.ndarray]:
     dist = (
         f"Sqrt(Max(Sqrt(x*x + y*y) - {spec.r_ref!r}, 0)^2 + Max(-z - {spec.z_ref!r}, 0)^2)"
     )
-    inner = f"{spec.h!r}"
+    scale = ""
     if spec.r_fine is not None and spec.r_fine < spec.r_ref:
-        inner = f"{spec.h!r} * Max(1, Sqrt(x*x + y*y + z*z) / {spec.r_fine!r})"
+        scale = f" * Max(1, Sqrt(x*x + y*y + z*z) / {spec.r_fine!r})"
+    inner = f"{spec.h!r}{scale}"
+    if spec.h_surface is not None and spec.h_surface < spec.h:
+        inner = f"Min({inner}, {spec.h_surface!r}{scale} + {SURFACE_GRADING!r} * Max(-z, 0))"
     size = f"Min({inner} + {spec.grading!r} * {dist}, {spec.h_max!r})"
     gmsh.initialize(interruptible=False)
     try:

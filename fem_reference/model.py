@@ -318,7 +318,7 @@ class FemModel:
                 f"fem.order = {fem.order}: fem_reference implements P2 (order 2) only"
             )
         self.a_ref = reference_length(case)
-        self.h = fem.h * self.a_ref  # element size in the contact zone [mm]
+        self.h = fem.h_contact * self.a_ref  # element size at the contact surface [mm]
         self.a_max = expected_radius(case, self.a_ref)  # units of a_ref
         r_c = 1.25 * self.a_max + 2.0 * fem.h
         z_ref = max(1.0, 0.8 * self.a_max)
@@ -346,7 +346,8 @@ class FemModel:
                 f"of the potential contact grid (grid.Lx, grid.Ly)"
             )
         self.spec = MeshSpec(self.shape, fem.block, fem.depth, fem.h, r_c, z_ref,
-                             grading=0.25, h_max=fem.block / 4.0, r_fine=r_fine)
+                             grading=0.25, h_max=fem.block / 4.0, r_fine=r_fine,
+                             h_surface=fem.surface_layer)
         self.law_mode = self._law_mode()
         # The contact iteration needs the tangential DOFs only when the tangential
         # tractions depend on them: friction with history, or any friction with the

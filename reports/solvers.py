@@ -170,8 +170,9 @@ def grid_cell(case: Case) -> float:
 
 
 def fem_cell(case: Case) -> float:
-    """The FEM's element size in the contact zone [mm]: ``fem.h`` in units of a0."""
-    return case.fem.h * case.hertz_scales[0]
+    """The FEM's element size at the contact surface [mm]: ``fem.h_surface`` (else
+    ``fem.h``) in units of a0."""
+    return case.fem.h_contact * case.hertz_scales[0]
 
 
 def no_cell(case: Case) -> float:
@@ -201,9 +202,9 @@ def refine_grid(case: Case, factor: float) -> Case:
 
 
 def refine_fem(case: Case, factor: float) -> Case:
-    """``case`` with the FEM's contact-zone element size ``fem.h`` divided by ``factor``
-    (the block, the penalty in units of E*/h and the output grid unchanged)."""
-    return case.with_changes(fem=replace(case.fem, h=case.fem.h / factor))
+    """``case`` with the FEM's element sizes ``fem.h`` and ``fem.h_surface`` divided by
+    ``factor`` (the block, the penalty in units of E*/h and the output grid unchanged)."""
+    return case.with_changes(fem=case.fem.refined(factor))
 
 
 @dataclass(frozen=True)

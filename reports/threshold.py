@@ -130,7 +130,8 @@ def parse_grids(text: str | None) -> tuple[float, ...]:
 def grid_label(solver: str, case: Case) -> str:
     """``41x41`` for a grid, ``fem.h=0.125`` (a0) for the FEM."""
     if solvers.REGISTRY[solver].cell_size is solvers.fem_cell:
-        return f"fem.h={case.fem.h:.4g}"
+        hs = case.fem.h_surface
+        return f"fem.h={case.fem.h:.4g}" + ("" if hs is None else f",h_surface={hs:.4g}")
     return f"{case.grid.nx}x{case.grid.ny}"
 
 

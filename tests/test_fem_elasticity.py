@@ -167,6 +167,8 @@ def test_mesh_cache_and_determinism(tmp_path, monkeypatch):
         (dict(h=-0.1), "h = "),
         (dict(r_ref=6.0), "does not fit"),
         (dict(h=2.0), "below r_ref"),
+        (dict(h_surface=0.3), "h_surface"),
+        (dict(h_surface=0.0), "h_surface"),
     ],
 )
 def test_mesh_spec_errors(kwargs, match):
@@ -174,3 +176,39 @@ def test_mesh_spec_errors(kwargs, match):
     base.update(kwargs)
     with pytest.raises(MeshError, match=match):
         MeshSpec(**base)
+
+
+def test_surface_layer_refines_the_contact_surface_only(tmp_path, monkeypatch):
+    """``h_surface``: the top facets in the refined zone have about h_surface edges (not
+    h), the elements at depth keep h, and the estimate counts the refined mesh's
+    tetrahedra and contact facets as it counts uniform ones (within its calibration)."""
+    from fem_reference import cost
+
+    monkeypatch.setenv("CONTACT_VV_CACHE", str(tmp_path))
+    kw = dict(shape="half", L=5.0, H=5.0, h=0.25, r_ref=1.5, z_ref=1.0, h_max=1.5)
+
+    def edges(points, tets, where):
+        """Mean edge length of the tetrahedra whose centroid satisfies ``where``."""
+        c = points[:, tets].mean(axis=1)
+        keep = where(c)
+        P = points[:, tets[:, keep]]
+        pairs = [(0, 1), (0, 2), (0, 3), (1, 2), (1, 3), (2, 3)]
+        return float(np.mean([np.linalg.norm(P[:, i] - P[:, j], axis=0) for i, j in pairs]))
+
+    def top(c):
+        return (np.hypot(c[0], c[1]) < 1.0) & (c[2] > -0.05)
+
+    def deep(c):
+        return (np.hypot(c[0], c[1]) < 1.0) & (c[2] < -0.6) & (c[2] > -1.0)
+
+    uniform = build_points(MeshSpec(**kw))
+    layered = build_points(MeshSpec(**kw, h_surface=0.125))
+    # the uniform mesh's elements of size h at depth are the yardstick (edge ~ 1.4 size)
+    ratio_top = edges(*layered, top) / edges(*uniform, deep)
+    ratio_deep = edges(*layered, deep) / edges(*uniform, deep)
+    assert 0.35 < ratio_top < 0.6, ratio_top  # h_surface / h = 0.5 (measured 0.45)
+    assert 0.9 < ratio_deep < 1.1, ratio_deep
+    assert MeshSpec(**kw, h_surface=0.125).key() != MeshSpec(**kw).key()
+    for spec_kw, (_, tets) in ((kw, uniform), ({**kw, "h_surface": 0.125}, layered)):
+        p = {**spec_kw, "grading": 0.25, "r_fine": None, "h_surface": spec_kw.get("h_surface")}
+        assert 0.8 < tets.shape[1] / cost.element_count(p) < 1.25

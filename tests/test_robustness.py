@@ -20,6 +20,8 @@ from halfspace.wear import _check_wear
     ({"materials.b.nu": 0.5}, "materials.b.nu = 0.5"),
     ({"materials.a.E": -1.0}, "materials.a.E = -1.0"),
     ({"grid.nx": 3}, "grid.nx = 3"),
+    ({"fem.h_surface": 0.2}, "fem.h_surface = 0.2: must not exceed fem.h = 0.125"),
+    ({"fem.h_surface": -0.05}, "fem.h_surface = -0.05"),
 ])
 def test_bad_values_are_refused_naming_the_key(over, needle):
     with pytest.raises(CaseError, match=needle.replace(".", r"\.")):
