@@ -103,6 +103,12 @@ def test_refinement_through_the_registry():
     assert (f2.fem.h, f3.fem.h) == pytest.approx((case.fem.h * 1.5, case.fem.h * 2.25))
     assert f2.grid == case.grid  # the FEM's output grid is not its discretisation
     assert gridstudy.changes(case, f3) == {"fem.h": pytest.approx(0.28125)}
+    # a surface layer is coarsened with the volume: the same ratio, the same cell ratio
+    layered = case.with_changes(fem=replace(case.fem, h_surface=0.0625))
+    l2, l3 = gridstudy.coarse_cases("fem", layered)
+    assert (l2.fem.h_surface, l3.fem.h_surface) == pytest.approx((0.09375, 0.140625))
+    assert fem.cell_size(l2) / fem.cell_size(layered) == pytest.approx(1.5)
+    assert fem.cell_size(layered) == pytest.approx(0.0625 * case.hertz_scales[0])
     with pytest.raises(CaseError, match=r"grid.nx = 5: .* has 3 cells"):
         gridstudy.coarse_cases("ic", case.with_changes(grid=replace(case.grid, nx=5)))
 
