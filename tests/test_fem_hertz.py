@@ -281,9 +281,9 @@ def test_unsupported_settings_raise_clear_errors():
         solve(case.with_changes(fem=FemSettings(block=4.0, depth=4.0)))
 
 
-@pytest.mark.full
 def test_hertz_article_mesh():
-    """h = a0/8, block 20 a0 (the probe's mesh): the tolerances with margin."""
+    """h = a0/8, block 20 a0 (the probe's mesh): the tolerances with margin (12 s, so in
+    the fast tier: issue 12's axis and 1 % points are gated in CI)."""
     case, res = run(0.125, 20.0)
     a0, p0 = case.hertz_scales
     vm_ref, z_ref = axis_vm_peak(case.b.nu)
@@ -293,6 +293,14 @@ def test_hertz_article_mesh():
     assert abs(sc["vm_axis_max"] / p0 / vm_ref - 1) < 0.01
     assert abs(sc["vm_axis_z"] / a0 - z_ref) < 0.02
     assert abs(sc["P_reaction"] / case.load.P - 1) < 1e-3
+    # the reported maximum (over both planes) of an axisymmetric load lies on the axis,
+    # within one cell of the report grid, and within 1 % of the closed form
+    g = case.grid
+    assert math.hypot(sc["vm_max_x"], sc["vm_max_y"]) <= max(g.dx, g.dy) * (1 + 1e-9)
+    assert abs(sc["vm_max"] / p0 / vm_ref - 1) < 0.01
+    print(f"\nvm_max {sc['vm_max'] / p0:.4f} p0 (closed form {vm_ref:.4f}) at "
+          f"({sc['vm_max_x'] / g.dx:.2f}, {sc['vm_max_y'] / g.dy:.2f}) cells, "
+          f"z = {sc['vm_max_z'] / a0:.3f} a0")
 
 
 @pytest.mark.full
