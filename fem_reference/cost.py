@@ -7,7 +7,7 @@ choose_shape`; the refined zone r_c = 1.25 a_max + 2 h from the expected contact
 a_max, Argatov's worn radius for sliding wear), and :func:`element_count` counts the
 tetrahedra gmsh will make without meshing: the element density ``1 / (C_TET size³)``
 integrated over the block, ``size(r, z)`` the size field of :mod:`fem_reference.mesh`
-(h in the refined cylinder, ``min(h, h_surface + 0.25 z)`` there with a surface layer,
+(h in the refined cylinder, ``min(h, h_surface + 0.1 z)`` there with a surface layer,
 ``h + grading d`` beyond, capped at h_max), by Gauss-Legendre
 panels in cylindrical coordinates (r, z): breakpoints at the zone's radius and depth, at
 r_fine and at L (beyond which the square block covers part of each circle), and at most

@@ -36,7 +36,7 @@ from cases.result import atomic_path
 
 SHAPES = ("quarter", "half", "full")
 _MESH_VERSION = 2  # bump when the meshing recipe changes
-SURFACE_GRADING = 0.25  # size growth per unit depth below the contact surface (h_surface)
+SURFACE_GRADING = 0.1  # size growth per unit depth below the contact surface (h_surface)
 
 
 class MeshError(RuntimeError):
@@ -84,6 +84,8 @@ class MeshSpec:
         fields = asdict(self)
         if fields["h_surface"] is None:  # the meshes cached before the key existed
             del fields["h_surface"]
+        else:
+            fields["surface_grading"] = SURFACE_GRADING
         payload = json.dumps(
             {**fields, "version": _MESH_VERSION, "gmsh": gmsh.__version__}, sort_keys=True
         )

@@ -185,7 +185,7 @@ def test_surface_layer_refines_the_contact_surface_only(tmp_path, monkeypatch):
     from fem_reference import cost
 
     monkeypatch.setenv("CONTACT_VV_CACHE", str(tmp_path))
-    kw = dict(shape="half", L=5.0, H=5.0, h=0.25, r_ref=1.5, z_ref=1.0, h_max=1.5)
+    kw = dict(shape="half", L=5.0, H=5.0, h=0.25, r_ref=1.5, z_ref=2.0, h_max=1.5)
 
     def edges(points, tets, where):
         """Mean edge length of the tetrahedra whose centroid satisfies ``where``."""
@@ -198,8 +198,8 @@ def test_surface_layer_refines_the_contact_surface_only(tmp_path, monkeypatch):
     def top(c):
         return (np.hypot(c[0], c[1]) < 1.0) & (c[2] > -0.05)
 
-    def deep(c):
-        return (np.hypot(c[0], c[1]) < 1.0) & (c[2] < -0.6) & (c[2] > -1.0)
+    def deep(c):  # below the layer, (h - h_surface) / SURFACE_GRADING = 1.25 deep
+        return (np.hypot(c[0], c[1]) < 1.0) & (c[2] < -1.4) & (c[2] > -1.9)
 
     uniform = build_points(MeshSpec(**kw))
     layered = build_points(MeshSpec(**kw, h_surface=0.125))
