@@ -53,7 +53,8 @@ where no closed form exists) and kept above them by a margin for cases not bundl
   2.5 %), 7 % for the pressure's max norm (measured 4.7 %: nodal values interpolated
   linearly), 15 % for the tangential max norm (off the stick band, where the √(c − r) kink lies
   between nodes, docs/formulation.md §2.7: measured 5.1 % on Cattaneo–Mindlin at the
-  quick a0/10, 5.8 % at a0/12; the kink itself 0.23–0.25 at Q/μP = 0.25) and 5 % for
+  quick a0/10, 6.9 % at a0/12 with an a0/16 surface; the kink itself 0.21–0.23 at
+  Q/μP = 0.25) and 5 % for
   wear quantities (the block's compliance acts on the wear increments).  σ_VM,max
   measured 1.04 % (Cattaneo–Mindlin), within the 1.5 %.
 - closed forms (``analytic``: closed forms or converged quadrature, sampled on the
