@@ -56,7 +56,8 @@ def mu_squared(gx, gy, fr: Friction):
 def project(px, py, rho, fr: Friction):
     """P_E_rho of Eq. 17: radial scaling onto the friction ellipse ||p||_mu <= rho."""
     norm = mu_norm(px, py, fr)
-    scale = np.where(norm > rho, rho / np.where(norm > 0, norm, 1.0), 1.0)
+    outside = norm > rho  # then norm > 0; elsewhere no division (a tiny norm overflowed)
+    scale = np.where(outside, rho / np.where(outside, norm, 1.0), 1.0)
     return px * scale, py * scale
 
 
