@@ -12,7 +12,7 @@ against it).  Modules:
 - :mod:`.wear` — Argatov (2011) and Hegadekatte (2008) pin wear, orthotropic i_w(θ);
 - :mod:`.solver` — the "analytic" solver: ``solve(case, *, progress, on_output)`` and
   ``supports(case)`` (None, or why the case has no closed form), exported here as the
-  solver protocol of :mod:`reports.solvers`.
+  solver protocol of :mod:`reports.registry.solvers`.
 """
 
 from __future__ import annotations
@@ -39,4 +39,12 @@ def supports(case: Case) -> str | None:
     return _supports(case)
 
 
-__all__ = ["solve", "supports"]
+def surface_jump(nu: float):
+    """The μ at which the sliding sphere's σ_VM maximum jumps to the surface
+    (:func:`analytic.sliding.surface_jump`)."""
+    from .sliding import surface_jump as _surface_jump
+
+    return _surface_jump(nu)
+
+
+__all__ = ["solve", "supports", "surface_jump"]

@@ -7,7 +7,7 @@ The FEM models a block of half-width and depth ``fem.block`` / ``fem.depth`` (in
 instead of a half-space.  For each ``CASE:INDEX`` (quick set-up, sweep point INDEX) the
 FEM runs with both set to each of ``--blocks`` (the mesh regenerated, the contact-zone
 element size unchanged) and the relative change of p_max and σ_VM,max from the first
-block to the last is printed.  ``reports.solvers.FEM_BLOCK_TERMS`` holds twice the
+block to the last is printed.  ``reports.registry.solvers.FEM_BLOCK_TERMS`` holds twice the
 largest change (an error decaying like a0/L leaves as much again beyond the last block).
 """
 

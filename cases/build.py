@@ -62,7 +62,7 @@ def _grid(d: dict) -> Grid:
     for key, n in (("grid.nx", g.nx), ("grid.ny", g.ny)):
         if n < 4:
             raise CaseError(f"{key} = {n}: need at least 4 cells")
-    return g  # what the grid costs each solver is its own estimate (reports.plan.Limits)
+    return g  # what the grid costs each solver is its own estimate (reports.run.plan.Limits)
 
 
 def _load(d: dict) -> Load:
@@ -163,7 +163,7 @@ def _tolerances(d: dict) -> dict[str, float]:
 
 def _not_converged(d: dict) -> dict[str, str]:
     """``[not_converged]``: quantity -> the reason (a non-empty string); the quantity names
-    are checked against the comparisons' by the reports (:mod:`reports.tolerances`)."""
+    are checked against the comparisons' by the reports (:mod:`reports.registry.tolerances`)."""
     for key, value in d.items():
         if not isinstance(value, str) or not value.strip():
             raise CaseError(f"not_converged.{key} = {value!r}: must be a non-empty string "

@@ -16,7 +16,7 @@ corrector solves the step again with the wear compliance c_w = J (‖Δg_t‖_i,
 wear added is the one its gap holds.  The condensed operator stays valid throughout:
 wear changes only the gap.
 
-Tables of the run (the columns the half-space solver writes, :mod:`reports.cycles`):
+Tables of the run (the columns the half-space solver writes, :mod:`reports.compare.cycles`):
 ``loops`` (cycle, displacement, Qx, Qy per step) and ``cycles`` (per simulated cycle:
 the real cycle count at its end, the energy ∮ Q·d dδ by the trapezoidal rule on the
 steps, the least stick area, gross slip 1 / partial 0 / NaN without contact at an

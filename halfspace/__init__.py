@@ -4,7 +4,7 @@ Implements docs/formulation.md: kernels (Eq. 5, 41), FFT influence products,
 orthotropic frictional contact (Eq. 7-17, §3.4), orthotropic Archard wear (Eq. 18-23)
 and subsurface stresses (Eq. 32-34, Appendices A and C).
 
-The solver protocol (:mod:`reports.solvers`): :func:`solve` and :func:`supports`.
+The solver protocol (:mod:`reports.registry.solvers`): :func:`solve` and :func:`supports`.
 """
 
 from __future__ import annotations

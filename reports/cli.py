@@ -18,9 +18,8 @@ from typing import Any
 
 from cases.loader import BUNDLED, CASES_DIR, load_case
 from cases.model import CaseError
-
-from . import solvers
-from .errors import RunFailed, UserError
+from reports.registry import solvers
+from reports.registry.errors import RunFailed, UserError
 
 PROG = "contact-vv"
 
@@ -46,7 +45,7 @@ def _solver_list(text: str | None) -> list[str] | None:
 
 
 def _overrides(items: Sequence[str] | None) -> dict[str, Any]:
-    from .sweep import parse_value
+    from reports.run.sweep import parse_value
 
     out: dict[str, Any] = {}
     for item in items or ():
@@ -129,7 +128,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _threshold_parser(sub: Any, common: Any) -> None:
-    """The ``threshold`` sub-command (reports/threshold.py)."""
+    """The ``threshold`` sub-command (reports/run/threshold.py)."""
     thr = sub.add_parser("threshold", help="bisect a case key for the value at which an "
                          "event changes, per solver and grid (DIR/thresholds.csv)")
     thr.add_argument("case", metavar="CASE")
@@ -175,7 +174,7 @@ def cmd_list(args: argparse.Namespace) -> int:
 
 
 def _report_runs(runs, out: Path) -> int:
-    from .layout import staging_dir
+    from reports.store.layout import staging_dir
 
     failed, user = [], False
     for r in runs:
@@ -195,7 +194,7 @@ def _report_runs(runs, out: Path) -> int:
 
 
 def _limits(args: argparse.Namespace):
-    from .plan import Limits
+    from reports.run.plan import Limits
 
     for flag, value in (("--max-memory", args.max_memory), ("--max-hours", args.max_hours)):
         if value is not None and not (math.isfinite(value) and value > 0):
@@ -205,8 +204,8 @@ def _limits(args: argparse.Namespace):
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    from .plan import plan_case, select_solvers
-    from .runner import execute
+    from reports.run.plan import plan_case, select_solvers
+    from reports.run.runner import execute
 
     names = list(args.cases)
     if args.all:
@@ -224,7 +223,7 @@ def cmd_run(args: argparse.Namespace) -> int:
                        limits=limits, explicit=bool(_solver_list(args.solver)))
              for n in names]  # validate every case before running
     if args.convergence:
-        from .gridstudy import add_grids
+        from reports.run.study_runs import add_grids
 
         plans = [add_grids(p, limits) for p in plans]
     if args.jump_study:
@@ -244,10 +243,10 @@ def cmd_run(args: argparse.Namespace) -> int:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
-    from .plan import select_solvers
-    from .runner import execute
-    from .sweep import DaskExecutor, parse_param, plan_sweep
-    from .units import serial_executor
+    from reports.run.plan import select_solvers
+    from reports.run.runner import execute
+    from reports.run.sweep import DaskExecutor, parse_param, plan_sweep
+    from reports.run.units import serial_executor
 
     params = [parse_param(p) for p in args.param]
     if args.workers < 0:
@@ -271,7 +270,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     code = _report_runs([run], args.out)
     if code != 0:
         return code
-    from .plots import write_sweep_plot
+    from reports.render.plots import write_sweep_plot
 
     write_sweep_plot(run.path)
     print(f"sweep: {len(plan.units())} task(s) in {wall:.1f} s wall "
@@ -289,10 +288,10 @@ def _check_serial(plan, path: Path, wall: float) -> int:
     import pandas as pd
 
     from cases.result import atomic_write_text
-
-    from .layout import METRICS, SUMMARY
-    from .runner import execute
-    from .units import serial_executor
+    from reports.run.runner import execute
+    from reports.run.units import serial_executor
+    from reports.store import layout
+    from reports.store.layout import METRICS, SUMMARY
 
     with tempfile.TemporaryDirectory(prefix="contact-vv-serial-") as tmp:
         t0 = time.perf_counter()
@@ -305,7 +304,7 @@ def _check_serial(plan, path: Path, wall: float) -> int:
         same = a.equals(b) and (path / METRICS).read_bytes() == (ref.path / METRICS).read_bytes()
     check = {"parallel_wall_s": wall, "serial_wall_s": serial, "speedup": serial / wall,
              "identical": bool(same)}
-    atomic_write_text(path / "sweep_check.json", json.dumps(check, indent=1))
+    atomic_write_text(path / layout.SWEEP_CHECK, json.dumps(check, indent=1))
     print(f"sweep: serial re-run {serial:.1f} s vs parallel {wall:.1f} s "
           f"(speed-up {serial / wall:.2f}x); numbers "
           + ("identical" if same else "DIFFER"))
@@ -314,7 +313,8 @@ def _check_serial(plan, path: Path, wall: float) -> int:
 
 def _add_jumps(plans: list[Any], limits: Any) -> list[Any]:
     """The plans with their cycle-jump studies; UserError if none has one."""
-    from .jumpstudy import add_jumps, not_studied
+    from reports.run.study_runs import add_jumps
+    from reports.studies.jumpstudy import not_studied
 
     plans = [add_jumps(p, limits) for p in plans]
     if not any(p.jumps for p in plans):
@@ -330,9 +330,9 @@ def _add_jumps(plans: list[Any], limits: Any) -> list[Any]:
 
 
 def cmd_threshold(args: argparse.Namespace) -> int:
-    from . import threshold as th
-    from .events import EventOptions, event
-    from .plan import select_solvers
+    from reports.run import threshold as th
+    from reports.run.plan import select_solvers
+    from reports.studies.events import EventOptions, event
 
     th.check_param(args.param)
     event(args.event)
@@ -364,7 +364,7 @@ def cmd_threshold(args: argparse.Namespace) -> int:
 
 
 def cmd_report(args: argparse.Namespace) -> int:
-    from .html import write_report
+    from reports.render.html import write_report
 
     try:
         path = write_report(args.out)
@@ -376,7 +376,7 @@ def cmd_report(args: argparse.Namespace) -> int:
 
 
 def cmd_gate(args: argparse.Namespace) -> int:
-    from .gate import run_gate
+    from reports.render.gate import run_gate
 
     if args.drift is not None and not args.drift > 0:
         raise UserError("--drift must be a positive number")

@@ -13,7 +13,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from reports import manifest
+from reports.store import manifest
 
 
 def rehash(case: Path) -> None:

@@ -9,7 +9,7 @@ import pytest
 
 from cases.loader import load_case
 from cases.model import Body, CaseError, Friction, SlidingWear
-from reports.plan import check_fits
+from reports.run.plan import check_fits
 
 
 def test_hertz_scales_of_the_article_case():

@@ -23,10 +23,12 @@ from test_cli_run import HERTZ, write_case
 
 from cases.loader import load_case
 from cases.model import CaseError
-from reports import convergence, gridstudy, solvers
 from reports.cli import main
-from reports.gate import run_gate
-from reports.readers import read_metrics
+from reports.registry import solvers
+from reports.render.gate import run_gate
+from reports.store import study_tables
+from reports.store.readers import read_metrics
+from reports.studies import convergence, gridstudy
 
 C_MANUFACTURED = 0.1  # p_max = p0 (1 + C (h/a0)^2)
 OSCILLATION = {21: 1.0, 13: -1.0, 7: 1.0}  # sign of the σ_VM,max wiggle per cell count
@@ -151,12 +153,12 @@ def test_manufactured_order_is_recovered(studied):
     assert (root / "convergence.csv").is_file()
     files = json.loads((root / "manifest.json").read_text())["files"]
     assert "convergence.csv" in files  # listed and hashed with the rest
-    conv = gridstudy.read_convergence(root / "convergence.csv")
+    conv = study_tables.read_convergence(root / "convergence.csv")
     assert list(conv.columns[:14]) == ["solver", "param", "step", "quantity", "h1", "h2",
                                        "h3", "f1", "f2", "f3", "order", "f_extrapolated",
                                        "gci_fine", "status"]
     assert set(conv["solver"]) == {"ic"}  # the closed form has no grid
-    assert set(conv["quantity"]) <= set(gridstudy.GATED)
+    assert set(conv["quantity"]) <= set(gridstudy.STUDIED)
     row = conv[conv["quantity"] == "p_max"].iloc[0]
     assert (row["h1"], row["h2"], row["h3"]) == pytest.approx([1.6 / n for n in CELLS])
     print(f"manufactured p_max: order {row['order']:.9f}, GCI {row['gci_fine']:.4g}")
@@ -176,7 +178,7 @@ def test_manufactured_order_is_recovered(studied):
 def test_non_convergent_quantities_are_flagged(studied):
     _, out = studied
     root = out / "small"
-    conv = gridstudy.read_convergence(root / "convergence.csv").set_index("quantity")
+    conv = study_tables.read_convergence(root / "convergence.csv").set_index("quantity")
     assert conv.loc["vm_max", "status"] == "oscillating"
     assert conv.loc["P", "status"] == "not converged"
     assert "do not shrink" in conv.loc["P", "note"]
@@ -260,7 +262,7 @@ def test_coarse_runs_write_no_fields_and_leave_the_results_unchanged(studied, tm
     assert set(ma.loc[changed, "quantity"]) == {"vm_max"}  # the oscillating one
     assert (mb["status"] == "gated").all() and (mb["note"] == "").all()
     # and the tolerance of the converged scalar: the combined uncertainty replaces the
-    # budget (reports.uncertainty), here Roache's GCI of an exact order-2 sequence,
+    # budget (reports.studies.uncertainty), here Roache's GCI of an exact order-2 sequence,
     # 1.25 C (h1/a0)² / (1 + C (h1/a0)²), with the closed form's stated 0.5 %
     tightened = ma["tolerance"] != mb["tolerance"]
     assert set(ma.loc[tightened, "quantity"]) == {"p_max"}
@@ -288,7 +290,7 @@ def test_a_failing_coarse_grid_is_not_converged_not_fatal(tmp_path, manufactured
     out = tmp_path / "res"
     assert run(str(write_case(tmp_path)), "--solver", "ic", "--convergence", "--out",
                str(out)) == 0
-    conv = gridstudy.read_convergence(out / "small" / "convergence.csv")
+    conv = study_tables.read_convergence(out / "small" / "convergence.csv")
     assert set(conv["status"]) == {"not converged"}
     assert conv["note"].str.contains(r"grid 3 failed \(solver: did not converge").all()
     assert np.isnan(conv["f3"]).all() and np.isfinite(conv["f2"]).all()
@@ -312,7 +314,7 @@ def test_hertz_quick_grid_study_of_the_half_space_solver(tmp_path):
     out = tmp_path / "res"
     assert main(["run", "hertz", "--quick", "--solver", "ic", "--convergence",
                  "--no-progress", "--out", str(out)]) == 0
-    conv = gridstudy.read_convergence(out / "hertz" / "convergence.csv")
+    conv = study_tables.read_convergence(out / "hertz" / "convergence.csv")
     summary = pd.read_csv(out / "hertz" / "summary.csv")
     for r in conv.itertuples():
         print(f"{r.quantity:13s} f = {r.f1:.6g}, {r.f2:.6g}, {r.f3:.6g}  p = {r.order:.3g}  "
@@ -323,13 +325,13 @@ def test_hertz_quick_grid_study_of_the_half_space_solver(tmp_path):
     # measured: p = 4.73 from f = 220.05, 219.32, 225.63 MPa (p0 = 218.8 MPa): the
     # cell-averaged peak on grids resolving a0 with 3.8, 2.5 and 1.6 cells oscillates
     assert 4.0 < row["order"] < 5.5
-    assert row["status"] in convergence.STATUSES
+    assert row["status"] in study_tables.STATUSES
     assert conv.set_index("quantity").loc["P", "status"] == "exact"  # load control
 
 
 def test_a_malformed_convergence_table_is_damaged(studied):
-    from reports import manifest
-    from reports.results import scan
+    from reports.store import manifest
+    from reports.store.results import scan
 
     _, out = studied
     path = out / "small" / "convergence.csv"

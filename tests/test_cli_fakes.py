@@ -174,7 +174,7 @@ def registry(**targets: str) -> dict:
     the others :func:`supports_all`); solvers not named are made unavailable."""
     from dataclasses import replace
 
-    from reports import solvers
+    from reports.registry import solvers
 
     out = {name: replace(rec, package="no_such_module_xyz")
            for name, rec in solvers.REGISTRY.items()}
@@ -186,6 +186,6 @@ def registry(**targets: str) -> dict:
 
 def use(monkeypatch, **targets: str) -> None:
     """Point the registry at fakes for one test (see :func:`registry`)."""
-    from reports import solvers
+    from reports.registry import solvers
 
     monkeypatch.setattr(solvers, "REGISTRY", registry(**targets))

@@ -13,9 +13,9 @@ from pathlib import Path
 import pytest
 from test_cli_run import SWEEP, write_case
 
-from reports import layout, manifest
 from reports.cli import main
-from reports.results import scan
+from reports.store import layout, manifest
+from reports.store.results import scan
 
 TESTS = Path(__file__).resolve().parent
 ROOT = TESTS.parent
@@ -25,7 +25,7 @@ import signal, sys
 # background leaves SIGINT ignored, and that disposition is inherited across exec
 signal.signal(signal.SIGINT, signal.default_int_handler)
 sys.path[:0] = [{str(ROOT)!r}, {str(TESTS)!r}]
-from reports import solvers
+from reports.registry import solvers
 import test_cli_fakes
 solvers.REGISTRY = test_cli_fakes.registry(ic="IC_SOLVER", analytic="solve_exact")
 from reports.cli import main

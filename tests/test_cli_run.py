@@ -13,9 +13,9 @@ import pytest
 import test_cli_fakes as fakes
 
 from cases.result import SUMMARY_COLUMNS, load_step
-from reports import layout, manifest
 from reports.cli import main
-from reports.results import scan
+from reports.store import layout, manifest
+from reports.store.results import scan
 
 HERTZ = """\
 description = "small Hertz for tests"
@@ -225,7 +225,7 @@ def test_three_solvers_three_pairs_and_vtu(tmp_path, monkeypatch):
 
 
 def test_a_solver_that_does_not_support_a_case_is_skipped(tmp_path, monkeypatch, capsys):
-    from reports import solvers
+    from reports.registry import solvers
 
     fakes.use(monkeypatch, ic="solve_ic", fem="solve_fem")
     monkeypatch.setitem(solvers.REGISTRY, "fem",
@@ -320,9 +320,37 @@ def test_foreign_directories_are_neither_replaced_nor_flagged(tmp_path, fake, ca
 
 
 def test_nan_metric_fails():
-    from reports.compare import finish
+    from reports.compare.verdict import decide
 
-    frame = pd.DataFrame({"quantity": ["p_max", "p_max"], "pair": ["a-b"] * 2,
-                          "metric": ["rel"] * 2, "value": [math.nan, 0.001],
-                          "tolerance": [0.01, 0.01], "passed": [True, True]})
-    assert list(finish(frame)["passed"]) == [False, True]
+    frame = pd.DataFrame({"quantity": ["p_max"] * 3, "pair": ["a-b"] * 3,
+                          "metric": ["rel"] * 3, "value": [math.nan, 0.001, 0.001],
+                          "tolerance": [0.01, 0.01, math.inf], "status": ["gated"] * 3,
+                          "note": [""] * 3})
+    assert list(decide(frame)["passed"]) == [False, True, False]
+
+
+def test_each_step_file_is_written_once(tmp_path, monkeypatch):
+    """The serial executor saves each output step as the solver hands it over, with the
+    derived scalars (stress.z_below), and the writer of the unit does not save it again."""
+    from reports.run import units
+    from reports.store import write
+
+    saved: list[Path] = []
+
+    def counting(original):
+        def save(path, step):
+            saved.append(Path(path))
+            return original(path, step)
+        return save
+
+    monkeypatch.setattr(units, "save_step", counting(units.save_step))
+    monkeypatch.setattr(write, "save_step", counting(write.save_step))
+    text = SWEEP.replace("nz = 11", "nz = 11\nz_below = 0.05")
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path, text)), "--solver", "ic,analytic", "--out",
+               str(out)) == 0
+    steps = sorted((out / "small" / "fields").rglob("step_*.npz"))
+    assert len(steps) == 4  # two solvers at two sweep points, one step each
+    assert len(saved) == len(set(saved)) == 4
+    for path in steps:
+        assert math.isfinite(load_step(path).scalars["vm_max_below"])

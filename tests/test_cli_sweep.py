@@ -8,8 +8,8 @@ import test_cli_fakes as fakes
 from test_cli_run import SWEEP, write_case
 
 from reports.cli import main
-from reports.errors import UserError
-from reports.sweep import dump_toml, parse_param, sweep_points
+from reports.registry.errors import UserError
+from reports.run.sweep import dump_toml, parse_param, sweep_points
 
 
 def test_parse_ranges_and_lists():
@@ -48,7 +48,7 @@ def test_sweep_points_replace_the_file_sweep(tmp_path):
 
 def test_workers_get_this_process_thread_settings(monkeypatch):
     pytest.importorskip("distributed")
-    from reports.sweep import worker_environ
+    from reports.run.sweep import worker_environ
 
     monkeypatch.setenv("OPENBLAS_NUM_THREADS", "3")
     monkeypatch.delenv("OMP_NUM_THREADS", raising=False)
@@ -81,7 +81,7 @@ def test_dask_sweep_matches_serial(tmp_path, monkeypatch, capsys):
     mf = json.loads((tmp_path / "dask" / name / "manifest.json").read_text())
     assert mf["executor"]["workers"] == 2 and mf["executor"]["threads"] == 2
     # the workers compute with this process's BLAS/OpenMP thread settings
-    from reports.sweep import _thread_env
+    from reports.run.sweep import _thread_env
 
     assert list(mf["executor"]["worker_thread_env"].values()) == [_thread_env()] * 2
     assert mf["sweep"]["keys"] == ["friction.mu"]

@@ -9,7 +9,7 @@ import pytest
 import test_cli_fakes as fakes
 
 from reports.cli import main
-from reports.readers import read_result, read_thresholds
+from reports.store.readers import read_result, read_thresholds
 
 SLIDING = ["threshold", "sliding_friction", "--param", "friction.mu", "--event",
            "vm_max_on_surface", "--quick", "--no-progress"]

@@ -331,8 +331,8 @@ def test_baselines_are_not_updated_from_damaged_results(res, capsys):
 
 def test_a_file_damaged_after_the_scan_moves_its_case_to_damaged(res):
     """The report draws from files read lazily; one that fails then is named too."""
-    from reports import html
-    from reports.results import scan
+    from reports.render import html
+    from reports.store.results import scan
 
     results = scan(res)
     truncated(npz(res / "hertz"))

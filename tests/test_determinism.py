@@ -9,7 +9,7 @@ bit-identical results.
   subprocess with another ``PYTHONHASHSEED`` (so no result may depend on set or dict
   ordering of strings, object addresses or state left in the process): ``summary.csv``
   is byte-identical once its wall-time column ``wall_s`` is removed (the only column
-  that varies, see ``reports/runner.py``: the manifest's ``date``, ``wall_s`` and
+  that varies, see ``reports/run/runner.py``: the manifest's ``date``, ``wall_s`` and
   ``unit_wall_s`` are not in the CSVs), ``metrics.csv`` and the tables are
   byte-identical, and the arrays of every field file are bit-identical (the ``.npz``
   containers themselves carry zip timestamps, and their ``scalars`` the wall time).

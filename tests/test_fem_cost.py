@@ -134,14 +134,14 @@ def test_worn_cases_name_the_sliding_distance():
 
 
 def test_planner_refuses_a_hostile_h_naming_fem_h():
-    from reports.plan import plan_case
+    from reports.run.plan import plan_case
 
     with pytest.raises(CaseError, match=r"fem\.h"):
         plan_case("hertz", ["fem"], overrides={"fem.h": 0.001})
 
 
 def test_planner_accepts_the_bundled_quick_case():
-    from reports.plan import Limits, plan_case
+    from reports.run.plan import Limits, plan_case
 
     plan = plan_case("hertz", ["fem"], quick=True, limits=Limits(memory=4 * 2**30))
     assert plan.units() == [(0, "fem")]

@@ -25,7 +25,7 @@ import pytest
 import analytic
 from cases.loader import load_case
 from fem_reference import solve
-from reports.cycles import compare_tables, friction_scale
+from reports.compare.cycles import compare_tables, friction_scale
 
 pytestmark = pytest.mark.fem
 
@@ -49,7 +49,7 @@ def test_first_cycle_against_mindlin_deresiewicz(k):
                                                      friction_scale(case)))
     print(f"\n{case.param}: P/P_Hertz - 1 = {sc['P'] / P_ref - 1:+.2e}, loop "
           f"{100 * rows['loop_q']:.3f} % of muP, energy {100 * rows['energy']:+.3f} %")
-    assert rows["loop_q"] < 0.0025  # the grid solvers' loop budget (reports/solvers.py)
+    assert rows["loop_q"] < 0.0025  # the grid solvers' loop budget (reports/registry/solvers.py)
     assert rows["energy"] < 0.01
     assert fem.events == []  # watched; the regime of the loading holds through the cycle
     # w_max is the largest depth of the wear field on the grid (the modified basis'
@@ -66,11 +66,11 @@ def test_first_cycle_against_mindlin_deresiewicz(k):
 def test_full_tier_first_cycle_within_the_default_tolerances(k):
     """The bundled case at its full tier (61², 20 steps per cycle, h = a0/12): every
     fem-analytic row of the first cycle within its default tolerance, the wear fields
-    included (the budgets of reports/solvers.py against the closed form of
+    included (the budgets of reports/registry/solvers.py against the closed form of
     analytic/fretting_case.py).  Measured 2026-11-25, partial slip: wear L2 5.7 % (6 %),
     max 5.6 % (7 %), w_max 0.8 %, loop 0.04 % of μP, energy 0.10 %; gross slip 1.3 %,
     2.6 %, 0.11 %, 0.075 %, 0.05 %; 705 s and 1030 s per point."""
-    from reports.compare import compare_point
+    from reports.compare.metrics import compare_point
 
     case = load_case("fretting_isotropic")[k]
     assert case.fem.h == pytest.approx(1.0 / 12.0)
@@ -121,7 +121,7 @@ def test_expected_radius_and_model_of_a_fretting_case():
 def test_fretting_runs_through_the_fem_on_request_only():
     """A run that names no solvers leaves the FEM out of fretting cases and says why; a
     run that names it includes it (static cases include it either way)."""
-    from reports.plan import plan_case
+    from reports.run.plan import plan_case
 
     every = ["ic", "fem", "analytic"]
     plan = plan_case("fretting_isotropic", every, quick=True, explicit=False)

@@ -154,7 +154,7 @@ def test_orthotropic_sliding_half_block_with_companion(monkeypatch):
     1e-9.  Without the companion the yz plane misses by 15.5 %, with its sign flipped by
     26 %."""
     from fem_reference import model
-    from reports.compare import compare_steps
+    from reports.compare.metrics import compare_steps
 
     case = load_case("sliding_friction", quick=True)[0]
     case = case.with_changes(fem=FemSettings(block=10.0, depth=10.0, h=0.25),
@@ -197,7 +197,7 @@ def test_sweep_reuses_the_model_core(monkeypatch):
 
 def _mindlin_errors(case, res):
     """(L2, max, banded max) errors of the FE p_x on the case grid against Mindlin's
-    traction, in the metrics' normalisation (reports.tolerances): L2 over the contact,
+    traction, in the metrics' normalisation (reports.registry.tolerances): L2 over the contact,
     max outside the band of one cell inside the contact edge, banded max also outside
     the stick band (one element on either side of the stick radius c, docs/formulation.md
     §2.7), all over max |q|."""

@@ -2,7 +2,7 @@
 -> partial slip and back, the load lost and the contact worn through under a held
 approach, each with the real cycle at which it was seen (to within the cycle jump J);
 ``events.csv`` beside ``summary.csv`` and the report's Events table
-(``reports/run_events.py``).
+(``reports/store/event_table.py``).
 
 Runs (quick size, about 20 s in all):
 
@@ -187,10 +187,10 @@ def test_worn_through_under_held_approach():
 
 def test_damaged_events_file_is_named(results, tmp_path):
     """An events.csv that does not hold cycle counts makes its case damaged, not a
-    traceback (reports/readers.py::read_result)."""
+    traceback (reports/store/readers.py::read_result)."""
     from damage_kit import rehash
 
-    from reports.results import scan
+    from reports.store.results import scan
 
     out = tmp_path / "out"
     shutil.copytree(results / NEAR, out / NEAR)

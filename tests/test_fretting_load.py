@@ -1,6 +1,6 @@
 """Fretting with the normal load held (cases/examples/fretting_orthotropic_load.toml) and
 the early estimate of the worn contact's size (cases.model.Case.worn_radius_estimate,
-reports.plan.grid_warning)."""
+reports.run.plan.grid_warning)."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ import pytest
 
 from cases.loader import load_case
 from reports.cli import main
-from reports.plan import grid_warning, plan_case
+from reports.run.plan import grid_warning, plan_case
 
 EXAMPLE = Path(__file__).resolve().parent.parent / "cases" / "examples" / \
     "fretting_orthotropic_load.toml"

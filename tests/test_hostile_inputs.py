@@ -14,8 +14,8 @@ from pathlib import Path
 import pytest
 from test_cli_run import HERTZ
 
-from reports import layout
 from reports.cli import main
+from reports.store import layout
 
 TINY = HERTZ.replace("Lx = 1.6\nnx = 21", "Lx = 1.6\nLy = 1.6\nnx = 11\nny = 11").replace(
     "nz = 11", "nz = 5")

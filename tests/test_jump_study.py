@@ -1,5 +1,5 @@
 """`contact-vv run --jump-study`: the fretting runs again at J/2 and J/4, the change when
-the jump is halved, order and extrapolation per output cycle (reports/jumpstudy.py)."""
+the jump is halved, order and extrapolation per output cycle (reports/studies/jumpstudy.py)."""
 
 from __future__ import annotations
 
@@ -12,10 +12,13 @@ import pytest
 
 import halfspace
 from cases.loader import load_case
-from reports import jumpstudy
 from reports.cli import main
-from reports.gate import run_gate
-from reports.readers import Malformed
+from reports.compare.verdict import decide
+from reports.render.gate import run_gate
+from reports.run import study_runs
+from reports.store import study_tables
+from reports.store.readers import Malformed
+from reports.studies import jumpstudy
 
 BETA0 = ("--set", "friction.beta=0")  # quick fretting_orthotropic, gross slip, J = 500
 
@@ -38,8 +41,8 @@ def studied(tmp_path_factory):
 
 
 def test_the_table_holds_the_runs_at_j_j2_j4(studied):
-    js = jumpstudy.read_jump_study(studied / "jump_study.csv")
-    assert list(js.columns) == jumpstudy.COLUMNS
+    js = study_tables.read_jump_study(studied / "jump_study.csv")
+    assert list(js.columns) == study_tables.JUMP_COLUMNS
     assert set(js["solver"]) == {"ic"} and set(js["cycle"]) == {1000.0, 2000.0}
     assert (js[["h1", "h2", "h3"]].to_numpy() == [125.0, 250.0, 500.0]).all()
     # f(J) is the run's own value: the study leaves the run's results unchanged
@@ -66,7 +69,7 @@ def test_the_cycle_jump_converges_at_first_order(studied):
     halves the error of w_max (order 1, measured 0.995 at 2000 cycles), and the power
     law fitted to J/4, J/2, J predicts an independent run at J/8 to within a tenth of
     what J/8 changes from J/4 (measured: 1e-7 mm of 5.8e-6 mm)."""
-    w = jumpstudy.read_jump_study(studied / "jump_study.csv")
+    w = study_tables.read_jump_study(studied / "jump_study.csv")
     row = w[(w["quantity"] == "w_max") & (w["cycle"] == 2000.0)].iloc[0]
     print(f"w_max at 2000 cycles: {row['f1']:.6g} {row['f2']:.6g} {row['f3']:.6g}, "
           f"order {row['order']:.4f}, change when halved {row['change_halved']:.4%}")
@@ -87,7 +90,7 @@ def test_report_and_gate(studied):
     html = (out / "index.html").read_text()
     sec = html.split('id="jump-fretting_orthotropic"')[1].split("</div>")[0]
     assert "Cycle-jump convergence" in sec and "halving J [%]" in sec
-    n = len(jumpstudy.read_jump_study(studied / "jump_study.csv"))
+    n = len(study_tables.read_jump_study(studied / "jump_study.csv"))
     assert f"{n} / {n} quantities converged or exact" in sec
 
 
@@ -95,24 +98,24 @@ def test_a_damaged_table_is_refused(studied, tmp_path):
     bad = tmp_path / "jump_study.csv"
     bad.write_text((studied / "jump_study.csv").read_text().replace("converged", "fine", 1))
     with pytest.raises(Malformed, match="column 'status' holds 'fine'"):
-        jumpstudy.read_jump_study(bad)
+        study_tables.read_jump_study(bad)
 
 
 def test_not_converged_in_j_is_flagged_not_gated(studied):
     """A metric whose study (either solver) is not converged and spreads by more than the
     budget is not gated, with the three jumps and values in its note."""
-    js = jumpstudy.read_jump_study(studied / "jump_study.csv")
+    js = study_tables.read_jump_study(studied / "jump_study.csv")
     row = js[(js["quantity"] == "w_max") & (js["cycle"] == 2000.0)].iloc[[0]].copy()
     row["status"], row["f1"] = "not converged", 2 * row["f3"].iloc[0]
     metrics = pd.DataFrame([{"param": "beta=0", "step": int(row["step"].iloc[0]),
                              "pair": "ic-fem", "quantity": "w_max", "metric": "rel",
                              "value": 0.01, "tolerance": 0.1, "status": "gated",
                              "note": ""}])
-    flagged = jumpstudy.flag_metrics_jump(metrics, row)
+    flagged = decide(metrics, jump=jumpstudy.flags_jump(metrics, row))
     assert flagged["status"].iat[0] == "not converged"
     assert flagged["note"].iat[0].startswith("jump study: ic not converged, f = ")
     assert "on J = 125, 250, 500 cycles" in flagged["note"].iat[0]
-    assert jumpstudy.flag_metrics_jump(metrics, js)["status"].iat[0] == "gated"
+    assert decide(metrics, jump=jumpstudy.flags_jump(metrics, js))["status"].iat[0] == "gated"
 
 
 @pytest.mark.parametrize(("case", "needle"), [
@@ -130,17 +133,17 @@ def test_no_cycle_jump_is_an_error(tmp_path, capsys, case, needle):
 def test_a_failed_level_leaves_the_quantity_not_converged():
     """A run at J/2 or J/4 that fails (contact at the grid edge, no convergence) is no
     evidence: the rows say which level failed and why, and are not converged."""
-    from reports.gridstudy import Study
-    from reports.plan import plan_case
+    from reports.run.plan import plan_case
+    from reports.run.study_runs import Study
 
-    plan = jumpstudy.add_jumps(plan_case("fretting_orthotropic", ["ic"], quick=True,
+    plan = study_runs.add_jumps(plan_case("fretting_orthotropic", ["ic"], quick=True,
                                          overrides={"friction.beta": 0.0}))
     assert [(g.level, g.case.fretting.jump) for g in plan.jumps] == [(2, 250.0), (3, 125.0)]
     own = [{"step": 2, "cycle": 1000.0, "w_max": 1e-3}, {"step": 4, "cycle": 2000.0,
                                                           "w_max": 2e-3}]
     half = [{**r, "w_max": 1.1 * r["w_max"]} for r in own]
     study = Study(rows={(0, "ic", 2): half}, errors={(0, "ic", 3): "failed: edge"})
-    table = jumpstudy.table(plan, {(0, "ic"): own}, study).set_index("cycle")
+    table = study_runs.jump_table(plan, {(0, "ic"): own}, study).set_index("cycle")
     assert list(table["quantity"]) == ["w_max", "w_max"]
     assert table.loc[2000.0, "change_halved"] == pytest.approx(0.1, rel=1e-12)
     assert (table["status"] == "not converged").all()

@@ -1,5 +1,5 @@
 """The location of the σ_VM maximum is gated only where the maximum is unique to within
-the vm_max tolerance (reports.maxima): two separate maxima of nearly equal value make the
+the vm_max tolerance (reports.compare.maxima): two separate maxima of nearly equal value make the
 location jump between them, as on the sliding sphere near the friction coefficient at
 which the maximum moves to the surface."""
 
@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from cases.result import Plane, StepResult
-from reports import maxima
+from reports.compare import maxima
 
 S = np.linspace(-1.0, 1.0, 81)
 Z = np.linspace(0.0, 0.6, 31)

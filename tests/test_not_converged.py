@@ -1,5 +1,5 @@
 """Quantities that are not converged numbers are compared and shown, not gated
-(reports/tolerances.py, issue 14 point 3): the ``[not_converged]`` declaration of a case
+(reports/registry/tolerances.py, issue 14 point 3): the ``[not_converged]`` declaration of a case
 file, its checks, its converged companion ``vm_max_below``, the gate and the report; and
 on the bundled worn pin, the measured facts the declaration rests on."""
 
@@ -15,11 +15,11 @@ from test_cli_run import HERTZ, write_case
 
 from cases.loader import load_case
 from cases.result import load_step
-from reports import layout
 from reports.cli import main
-from reports.gate import run_gate
-from reports.readers import read_metrics
-from reports.solvers import resolve
+from reports.registry.solvers import resolve
+from reports.render.gate import run_gate
+from reports.store import layout
+from reports.store.readers import read_metrics
 
 SKEW = 0.3  # relative error the fake solver below puts on vm_max only
 
@@ -47,7 +47,7 @@ def skewed(monkeypatch):
     fakes.use(monkeypatch, ic="solve_exact", analytic="solve_exact")
     from dataclasses import replace
 
-    from reports import solvers
+    from reports.registry import solvers
 
     rec = replace(solvers.REGISTRY["ic"], package=__name__, solve_attr="solve_skewed")
     monkeypatch.setitem(solvers.REGISTRY, "ic", rec)
@@ -119,7 +119,7 @@ def test_declarations_are_checked(tmp_path, skewed, capsys, edit, message):
 def _pin(n: int):
     case = load_case("pin_on_disk", quick=True, overrides={"grid.nx": n, "grid.ny": n})[1]
     assert case.friction.mu1 == 0.5 and "vm_max" in case.not_converged
-    from reports.units import add_derived
+    from reports.run.units import add_derived
 
     result = resolve("ic")(case)
     add_derived(result, case)
@@ -155,7 +155,7 @@ def test_a_singular_edge_leaves_the_band_out_of_the_plane_l2():
     log-singular stress has no converged value) and at one interior point: the plane L2
     counts the edge point unless the case declares the singular edge; the interior one
     always."""
-    from reports.compare import compare_steps
+    from reports.compare.metrics import compare_steps
 
     case = load_case("pin_on_disk", quick=True)[1]
     a0, p0 = case.hertz_scales

@@ -25,8 +25,8 @@ import pandas as pd
 import pytest
 
 from cases.loader import BUNDLED
-from reports import layout
 from reports.cli import main
+from reports.store import layout
 
 BASELINES = Path(__file__).resolve().parent / "baselines"
 WITH_FEM = ("hertz", "cattaneo_mindlin", "sliding_friction", "pin_on_disk",

@@ -14,8 +14,8 @@ from analytic import mindlin
 from cases.loader import load_case
 from cases.model import CaseError
 from cases.result import Plane, RunResult, StepResult
-from reports import tolerances as tol
-from reports.compare import (
+from reports.compare.cycles import compare_tables, friction_scale
+from reports.compare.metrics import (
     common_axis,
     compare_point,
     compare_steps,
@@ -25,7 +25,7 @@ from reports.compare import (
     sample,
     stick_band,
 )
-from reports.cycles import compare_tables, friction_scale
+from reports.registry import tolerances as tol
 
 README = Path(__file__).resolve().parent.parent / "cases" / "README.md"
 

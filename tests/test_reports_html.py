@@ -101,7 +101,7 @@ def test_grid_convergence_table_from_the_sweep(report):
     # the fake pressure sampled at cell centres ±h/2 has p_max = 1.02 p0 √(1 − h²/2a0²):
     # the observed order of the three finest grids follows from those values
     from cases.loader import load_case
-    from reports.convergence import study
+    from reports.studies.convergence import study
 
     a0, p0 = load_case("hertz")[0].hertz_scales
     h = [1.6 / n for n in (80, 40, 20)]
@@ -118,7 +118,7 @@ def test_axes_are_labelled():
     import matplotlib.pyplot as plt
 
     from cases.loader import load_case
-    from reports import plots
+    from reports.render import plots
 
     case = load_case("hertz", quick=True)[0]
     a0, p0 = case.hertz_scales

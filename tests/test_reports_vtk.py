@@ -1,4 +1,4 @@
-"""Grid solvers' steps as .vtu for ParaView (reports/vtk.py): values round-trip exactly
+"""Grid solvers' steps as .vtu for ParaView (reports/store/vtk.py): values round-trip exactly
 and sit where they belong in the FEM's frame (Z = -depth); `contact-vv run` writes them."""
 
 from __future__ import annotations
@@ -14,8 +14,8 @@ from cases.loader import load_case
 from cases.result import STRESS_COMPONENTS, Plane, StepResult, load_step, von_mises
 from fem_reference.elasticity import P2Space
 from fem_reference.vtu import fields_mesh
-from reports import vtk
 from reports.cli import main
+from reports.store import vtk
 
 
 def fem_stress_names() -> list[str]:

@@ -29,10 +29,10 @@ def test_bad_values_are_refused_naming_the_key(over, needle):
 
 
 def test_a_grid_beyond_the_memory_is_refused_before_allocating():
-    """The planner asks the solver for its estimate (reports.plan.Limits): 20000² cells
+    """The planner asks the solver for its estimate (reports.run.plan.Limits): 20000² cells
     need ~480 GiB for the half-space operator alone and far more for the 61 stress layers;
     refused naming the keys that drive the estimate."""
-    from reports.plan import Limits, plan_case
+    from reports.run.plan import Limits, plan_case
 
     with pytest.raises(CaseError, match=r"GiB.*reduce stress\.nz, grid\.nx, grid\.ny"):
         plan_case("hertz", ["ic"], overrides={"grid.nx": 20000, "grid.ny": 20000})

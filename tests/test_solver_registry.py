@@ -12,8 +12,8 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from reports import solvers, tolerances
 from reports.cli import main
+from reports.registry import solvers, tolerances
 
 ROOT = Path(__file__).resolve().parent.parent
 
@@ -107,4 +107,4 @@ def test_reports_name_no_solver_outside_the_registry():
     found = [f"{p.name}:{line} {value!r}"
              for p in sorted((ROOT / "reports").glob("*.py")) if p.name != "solvers.py"
              for line, value in _literals(p) if value in names | pairs]
-    assert not found, "solver names outside reports/solvers.py: " + ", ".join(found)
+    assert not found, "solver names outside reports/registry/solvers.py: " + ", ".join(found)

@@ -1,4 +1,4 @@
-"""Thresholds (reports/threshold.py, reports/events.py): the bisection against functions
+"""Thresholds (reports/run/threshold.py, reports/studies/events.py): the bisection against functions
 with a known threshold, the events on hand-made steps, and the sliding-sphere friction
 threshold of the half-space solver and the closed form against Hamilton's field
 evaluated independently on a fine grid."""
@@ -13,9 +13,9 @@ import pytest
 from analytic.pointforce import COMPONENTS
 from analytic.sliding import sliding_sphere_stresses, trailing_edge_von_mises
 from cases.result import SLIP, STICK, Plane, RunResult, StepResult, von_mises
-from reports import threshold as th
-from reports.errors import UserError
-from reports.events import (
+from reports.registry.errors import UserError
+from reports.run import threshold as th
+from reports.studies.events import (
     EventOptions,
     EventUndefined,
     NoChange,

@@ -1,4 +1,4 @@
-"""Tolerances from the combined numerical uncertainty of grid studies (reports.uncertainty):
+"""Tolerances from the combined numerical uncertainty of grid studies (reports.studies.uncertainty):
 each kind of study gives its documented u, the terms combine in quadrature (Eq. U1), and
 the result can only tighten a tolerance."""
 
@@ -10,15 +10,17 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from reports import convergence, solvers, uncertainty
-from reports.compare import EXTRA_COLUMNS, METRICS_COLUMNS, finish
+from reports.compare.verdict import EXTRA_COLUMNS, METRICS_COLUMNS, decide
+from reports.registry import solvers
+from reports.registry import tolerances as tol
+from reports.studies import convergence, uncertainty
 
 H = (0.01, 0.015, 0.0225)
 
 
 def study_row(solver: str, quantity: str, f: tuple[float, float, float],
               param: str = "", step: int = 0) -> dict:
-    """A convergence-table row as reports.gridstudy writes it, from three values."""
+    """A convergence-table row as reports.studies.gridstudy writes it, from three values."""
     st = convergence.study(f, H)
     status, _ = convergence.classify(st)
     gci = 0.0 if status == convergence.EXACT else st.gci_fine
@@ -34,13 +36,18 @@ def metric_row(pair: str, quantity: str, value: float, tolerance: float,
     return {"quantity": quantity, "pair": pair, "metric": metric, "value": value,
             "tolerance": tolerance, "passed": True, "case": "c", "param": "", "step": 0,
             "s": math.nan, "cycle": math.nan, "tolerance_key": key, "status": "gated",
-            "note": "", "tolerance_kind": uncertainty.kind_of(key), "budget": tolerance,
+            "note": "", "tolerance_kind": tol.kind_of(key), "budget": tolerance,
             "uncertainty": math.nan}
 
 
 def metrics(*rows: dict) -> pd.DataFrame:
-    columns = METRICS_COLUMNS + EXTRA_COLUMNS + uncertainty.COLUMNS
-    return finish(pd.DataFrame.from_records(rows, columns=columns))
+    columns = METRICS_COLUMNS + EXTRA_COLUMNS + tol.TOLERANCE_COLUMNS
+    return decide(pd.DataFrame.from_records(rows, columns=columns))
+
+
+def apply(m: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
+    """The verdict on ``m`` with the combined uncertainty of the grid studies ``frame``."""
+    return decide(m, uncertainty=uncertainty.values(m, frame))
 
 
 def order_two(f0: float, c: float) -> tuple[float, float, float]:
@@ -73,7 +80,7 @@ def test_combined_uncertainty_sets_the_tolerance_only_where_it_is_tighter():
                 metric_row("ic-fem", "vm_max", 0.01, 0.04),  # not converged in ic
                 metric_row("ic-fem", "p_n", 0.01, 0.1, metric="l2"),  # a field norm
                 metric_row("ic-analytic", "p_max", 0.004, 0.001, key="ic-analytic.p_max"))
-    out = uncertainty.apply(m, frame)
+    out = apply(m, frame)
     u_ic, u_fem = 1.25 * 0.004 / 1.004, 1.25 * 0.003 / 0.997
     want_a = math.hypot(u_ic, solvers.closed_form_budget("p_max", "rel"))
     want_f = math.sqrt(u_ic**2 + u_fem**2 + solvers.fem_model_form("p_max", "rel") ** 2)
@@ -96,7 +103,7 @@ def test_a_defect_inside_the_budget_fails_against_the_uncertainty():
     frame = pd.DataFrame([study_row("ic", "p_max", order_two(101.0, 0.0008))])
     right = 0.0008 / 1.0008
     wrong = (101.0 * 1.0008 - 100.0) / 100.0
-    out = uncertainty.apply(metrics(metric_row("ic-analytic", "p_max", right, 0.035),
+    out = apply(metrics(metric_row("ic-analytic", "p_max", right, 0.035),
                                     metric_row("ic-analytic", "p_max", wrong, 0.035)), frame)
     assert list(out["passed"]) == [True, False]
     assert (out["budget"] > [right, wrong]).all()  # the budget would have passed both
@@ -107,9 +114,9 @@ def test_unmeasured_model_form_and_ungated_rows_keep_their_tolerance():
                           study_row("fem", "w_max", order_two(1e-3, 0.003))])
     m = metrics(metric_row("ic-fem", "w_max", 0.001, 0.08))
     m.loc[0, "status"] = "not converged"
-    out = uncertainty.apply(m, frame)
+    out = apply(m, frame)
     assert math.isnan(out["uncertainty"].iloc[0])  # ungated: no tolerance to set
-    out = uncertainty.apply(metrics(metric_row("ic-fem", "w_max", 0.001, 0.08)), frame)
+    out = apply(metrics(metric_row("ic-fem", "w_max", 0.001, 0.08)), frame)
     # the FEM's block term is not measured for wear: no U, the budget stays
     assert math.isnan(solvers.fem_model_form("w_max", "rel"))
     assert out["tolerance_kind"].iloc[0] == "budget" and out["tolerance"].iloc[0] == 0.08
@@ -119,13 +126,13 @@ def test_metrics_without_the_new_columns_read_as_budget_or_case():
     old = metrics(metric_row("ic-fem", "p_max", 0.001, 0.06),
                   metric_row("ic-fem", "p_max", 0.001, 0.05, key="p_max"))
     old = old.drop(columns=["tolerance_kind", "budget", "uncertainty"])
-    got = uncertainty.with_columns(old)
+    got = tol.with_tolerance_columns(old)
     assert list(got["tolerance_kind"]) == ["budget", "case"]
     assert list(got["budget"]) == [0.06, 0.05] and got["uncertainty"].isna().all()
 
 
 def test_read_metrics_refuses_an_unknown_tolerance_kind(tmp_path):
-    from reports.readers import Malformed, read_metrics
+    from reports.store.readers import Malformed, read_metrics
 
     m = metrics(metric_row("ic-fem", "p_max", 0.001, 0.06))
     path = tmp_path / "metrics.csv"

@@ -3,7 +3,7 @@
 The bundled cases are what the tolerances were measured on; these are not.  Each case
 file below sets only physics, a grid and the stress planes (no ``[fem]``, no
 ``[tolerances]``), and its run must pass every gated row of every pair at the default
-tolerances (``reports.tolerances``): the FEM against the closed forms and against the
+tolerances (``reports.registry.tolerances``): the FEM against the closed forms and against the
 half-space solver, the half-space solver against the closed forms.
 
 - partial slip with another radius, load and friction (R = 100 mm, P = 30 N, μ = 0.2,

@@ -1,0 +1,1 @@
+"""Sampling onto common points, metrics, cycles, maxima and the one verdict."""

@@ -1,0 +1,350 @@
+"""Compare solvers pairwise: tractions, wear, contact extent, σ_VM planes and maxima.
+
+For every pair of solvers (in registry order, the second one the reference: ``ic-fem``,
+``ic-analytic``, ``fem-analytic``), sweep point and output step present in both, fields
+are interpolated onto common sample points — per axis, the coarser of the two grids'
+coordinates inside their overlap — and reduced to the metrics of
+:mod:`reports.registry.tolerances`.  Quantities missing from either solver, or zero in both, are
+skipped; a NaN metric fails.
+
+Max norms leave out the *edge band*: the sample points within one cell of either
+solver's contact boundary.  There a cell-average (IC) and a point value (FEM, closed
+forms) of a traction that falls to zero inside the cell differ by a fraction of the
+traction itself, and a worn contact, whose pressure drops almost as a step at the edge
+(Argatov's limit is uniform pressure), makes that fraction O(1) at any grid size; the
+near-edge σ_VM follows the edge traction (its gradient ∝ jump/distance).  The L2 norms,
+the semi-widths and the contact area still measure the edge, except on the planes of a
+case that declares its surface σ_VM maximum not converged (``[not_converged] vm_max``, a
+log-singular edge, docs/formulation.md §2.6): there the plane L2 norms leave out the
+edge band as well, because the singular neighbourhood carries most of the difference
+and no grid settles it (worn pin, quick set-up, μ = 0.5, s = 160 mm: ic 41² against
+ic 161² 0.030 with the band, 0.015 without; the FEM 0.040 and 0.010).
+
+Max norms of the tangential tractions and of the σ_VM planes also leave out the
+*stick band*: the sample points within one cell — the coarser of the two solvers' own
+cells (``SolverRecord.cell_size``, the FEM's element) and the sample spacing — of either
+solver's stick–slip boundary (a stick point with a slip point of the same solver that
+close, or the reverse; on the planes, within that distance of the boundary's surface
+points).  There the tangential traction has a √(c − r) kink (docs/formulation.md §2.7):
+a field held at points h apart and interpolated between them misses it by O(√(h/a)) of
+μp₀ whatever the solver, so the max norm across it measures the node spacing, not the
+solver (Cattaneo–Mindlin, Q/μP = 0.25, exact Mindlin sampled at the FEM's nodes and
+interpolated: 0.266 at a0/8, 0.177 at a0/12, 0.092 at a0/24).  The max over the band is
+still written, as the metric ``kink``, and is not gated (status "not converged"); the L2
+norms and the stick-zone radius (``stick_area``) still measure the boundary.
+
+Fretting runs also carry per-cycle tables (``loops``: cycle, displacement, Qx, Qy;
+``cycles``: cycle, energy, ...); at an output step whose ``cycle`` both solvers' tables
+hold, the loop (``loop_q``) and the dissipated energy (``energy``) of that cycle are
+compared too (:func:`compare_tables`); a cycle only one solver has is skipped.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+
+from cases.model import Case
+from cases.result import RunResult, StepResult, vm_max_location
+from reports.compare import maxima
+from reports.compare.cycles import compare_tables, friction_scale
+from reports.compare.sampling import (
+    common_axis,
+    contact_edges,
+    interior,
+    off_edges,
+    sample,
+    spacing,
+    stick_band,
+    stick_edges,
+)
+from reports.compare.verdict import EXTRA_COLUMNS, METRICS_COLUMNS, decide
+from reports.registry import solvers
+from reports.registry import tolerances as tol
+
+_TINY = 1e-12
+#: the metric of the max over the stick band (module doc): written, never gated
+KINK = "kink"
+KINK_NOTE = ("max within one cell of the stick-slip boundary, where the traction has a "
+             "sqrt(c - r) kink that points h apart miss by O(sqrt(h/a)): it measures the "
+             "node spacing, not the solver; not gated (reports.compare.metrics)")
+
+
+def pairs(solvers: Sequence[str]) -> list[tuple[str, str]]:
+    """All pairs in the given order; the second solver of a pair is its reference."""
+    return list(itertools.combinations(solvers, 2))
+
+
+def field_errors(fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
+                 scale: float, ref: np.ndarray | None = None,
+                 max_mask: np.ndarray | None = None) -> dict[str, float] | None:
+    """Relative L2 and max errors of ``fa`` against ``fb`` on ``mask`` (None: skip).
+
+    The max norm of the difference is taken on ``mask & max_mask`` (the points off the
+    edge band, see the module doc), or on ``mask`` when that leaves no point (a contact
+    of a few cells).  The norms of ``ref`` (default ``fb``, over all of ``mask``)
+    normalise the errors: a traction component is measured against the whole
+    tangential traction |p_t| of the reference, so that a component that is nearly zero
+    in both solvers does not produce a large relative error.  Points where a field is
+    NaN are ignored; with no point left, or both fields zero (below 1e-12 ``scale``),
+    there is nothing to compare.  A reference that is zero while the other field is not
+    is normalised by ``scale``.
+    """
+    ref = fb if ref is None else ref
+    ok = np.isfinite(fa) & np.isfinite(fb) & np.isfinite(ref)
+    if mask is not None:
+        ok &= mask
+    if not ok.any():
+        return None
+    a, b, r = fa[ok], fb[ok], ref[ok]
+    tiny = _TINY * scale
+    if np.max(np.abs(a)) <= tiny and np.max(np.abs(b)) <= tiny:
+        return None
+    diff = a - b
+    if np.max(np.abs(r)) <= tiny:  # reference identically zero: normalise by the scale
+        l2_ref, max_ref = scale * math.sqrt(r.size), scale
+    else:
+        l2_ref, max_ref = float(np.linalg.norm(r)), float(np.max(np.abs(r)))
+    inner = np.ones(diff.shape, dtype=bool) if max_mask is None else max_mask[ok]
+    if not inner.any():
+        inner[:] = True
+    return {"l2": float(np.linalg.norm(diff)) / l2_ref,
+            "max": float(np.max(np.abs(diff[inner]))) / max_ref}
+
+
+# ------------------------------------------------------------------ per step
+
+
+def _scalar(step: StepResult, key: str) -> float:
+    value = step.scalars.get(key)
+    try:
+        value = float(value)
+    except (TypeError, ValueError):
+        return math.nan
+    return value
+
+
+def _vm_location(step: StepResult) -> tuple[float, float, float, float]:
+    """(vm_max, x, y, z) from the scalars, else from the planes (crossing at the ``x0``,
+    ``y0`` scalars, default 0)."""
+    keys = ("vm_max", "vm_max_x", "vm_max_y", "vm_max_z")
+    vals = tuple(_scalar(step, k) for k in keys)
+    if all(math.isfinite(v) for v in vals):
+        return vals  # type: ignore[return-value]
+    return vm_max_location(step.planes, float(step.scalars.get("x0", 0.0)),
+                           float(step.scalars.get("y0", 0.0)))
+
+
+def _plane_edges(step: StepResult, name: str, s: np.ndarray, x0: float, y0: float
+                 ) -> np.ndarray:
+    """Contact boundary of a step along the surface line of plane ``name`` (xz: y = y0,
+    yz: x = x0), at the plane's samples ``s``; empty without a surface pressure."""
+    if not step.surface or "p_n" not in step.surface:
+        return np.empty(0)
+    at = (s, np.array([y0])) if name == "xz" else (np.array([x0]), s)
+    line = sample((step.x, step.y), step.surface["p_n"], at).ravel()
+    return contact_edges(s, line)
+
+
+def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
+                  x0: float = 0.0, y0: float = 0.0, singular_edge: bool = False,
+                  cell: float = 0.0) -> list[tuple[str, str, float]]:
+    """Metric rows (quantity, metric, value) of step ``sa`` against reference ``sb``
+    (planes through (x0, y0)).  ``singular_edge``: the surface stress is log-singular at
+    the contact edge (a case that declares ``vm_max`` not converged), so the plane L2
+    norms leave out the edge band too (module doc).  ``cell``: the coarser of the two
+    solvers' own cell sizes (``SolverRecord.cell_size``, e.g. the FEM's element size),
+    the unit of the ``cells`` metrics where it is coarser than the sample spacing."""
+    hx = max(spacing(sa.x), spacing(sb.x))
+    hy = max(spacing(sa.y), spacing(sb.y))
+    band = max(hx, hy, cell)  # the stick band's half-width (module doc)
+    rows = _surface_rows(sa, sb, a0, p0, band)
+    plane_rows, hz = _plane_rows(sa, sb, p0, x0, y0, hx, hy, singular_edge, band)
+    return rows + plane_rows + _scalar_rows(sa, sb, a0, p0, max(hx, cell), max(hy, cell),
+                                            max(hz, cell) if hz > 0 else 0.0)
+
+
+def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: float
+                  ) -> list[tuple[str, str, float]]:
+    """Surface fields on the contact common to both solvers; the tangential tractions'
+    max norms leave out the stick band of half-width ``band`` (module doc)."""
+    if not (sa.surface and sb.surface and "p_n" in sa.surface and "p_n" in sb.surface):
+        return []
+    xs, ys = common_axis(sa.x, sb.x), common_axis(sa.y, sb.y)
+    if not (xs.size and ys.size):
+        return []
+    pa = sample((sa.x, sa.y), sa.surface["p_n"], (xs, ys))
+    pb = sample((sb.x, sb.y), sb.surface["p_n"], (xs, ys))
+    contact = (pa > 0) & (pb > 0)
+    fields = {"p_n": (pa, pb)}
+    for q in tol.SURFACE_FIELDS[1:]:
+        if q in sa.surface and q in sb.surface:
+            fields[q] = (sample((sa.x, sa.y), sa.surface[q], (xs, ys)),
+                         sample((sb.x, sb.y), sb.surface[q], (xs, ys)))
+    pt_ref = None
+    if "p_x" in fields and "p_y" in fields:
+        pt_ref = np.hypot(fields["p_x"][1], fields["p_y"][1])
+    inner = interior(contact)
+    kink = stick_band((sa, sb), xs, ys, band) & contact
+    rows = []
+    for q, (fa, fb) in fields.items():
+        scale = p0 if q.startswith("p_") else a0
+        tangential = q in ("p_x", "p_y")
+        ref = pt_ref if tangential else None
+        off = inner & ~kink if tangential else inner
+        err = field_errors(fa, fb, contact, scale, ref, max_mask=off)
+        if err is not None:
+            rows += [(q, m, err[m]) for m in tol.METRICS[q]]
+            rows += _kink_row(q, fa, fb, contact, kink if tangential else None, scale, ref)
+    return rows
+
+
+def _kink_row(q: str, fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
+              kink: np.ndarray | None, scale: float, ref: np.ndarray | None = None
+              ) -> list[tuple[str, str, float]]:
+    """The ``kink`` row of a field: its max error over the stick band ``kink`` (in the
+    normalisation of the max norm), none when the band holds no point of ``mask``."""
+    if kink is None:
+        return []
+    ok = kink & np.isfinite(fa) & np.isfinite(fb)
+    if mask is not None:
+        ok &= mask
+    if not ok.any():
+        return []
+    err = field_errors(fa, fb, mask, scale, ref, max_mask=kink)
+    return [] if err is None else [(q, KINK, err["max"])]
+
+
+def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
+                hx: float, hy: float, singular_edge: bool = False, band: float = 0.0
+                ) -> tuple[list[tuple[str, str, float]], float]:
+    """Subsurface σ_VM planes; also the larger depth spacing hz of the planes (0 if
+    none).  With ``singular_edge`` both norms leave out the edge band; the max norm
+    leaves out the stick band of half-width ``band`` below the boundary's surface points
+    (module doc)."""
+    rows, hz = [], 0.0
+    for q, name in tol.PLANE_FIELDS.items():
+        pa_, pb_ = sa.planes.get(name), sb.planes.get(name)
+        if pa_ is None or pb_ is None or "vm" not in pa_.fields or "vm" not in pb_.fields:
+            continue
+        hz = max(hz, spacing(pa_.z), spacing(pb_.z))
+        ss, zs = common_axis(pa_.s, pb_.s), common_axis(pa_.z, pb_.z)
+        if not (ss.size and zs.size):
+            continue
+        fa = sample((pa_.s, pa_.z), pa_.fields["vm"], (ss, zs))
+        fb = sample((pb_.s, pb_.z), pb_.fields["vm"], (ss, zs))
+        edges = np.concatenate([_plane_edges(st, name, ss, x0, y0) for st in (sa, sb)])
+        width = hx if name == "xz" else hy
+        off = off_edges(ss, zs, edges, width)
+        line = (ss, np.array([y0])) if name == "xz" else (np.array([x0]), ss)
+        kinks = np.concatenate([stick_edges(st, ss, line) for st in (sa, sb)])
+        kink = off & ~off_edges(ss, zs, kinks, band) if kinks.size else None
+        mask = off if singular_edge else None
+        err = field_errors(fa, fb, mask, p0,
+                           max_mask=off if kink is None else off & ~kink)
+        if err is not None:
+            rows += [(q, m, err[m]) for m in tol.METRICS[q]]
+            rows += _kink_row(q, fa, fb, mask, kink, p0)
+    return rows, hz
+
+
+def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float,
+                 hy: float, hz: float) -> list[tuple[str, str, float]]:
+    """Peak values (relative), semi-widths and equivalent radii (in cells), and the
+    location of the σ_VM maximum (in cells and in a0)."""
+    h = max(hx, hy)
+    rows: list[tuple[str, str, float]] = []
+    scale_of = {"p_max": p0, "vm_max": p0, "vm_max_below": p0, "w_max": a0,
+                "wear_volume": a0**3}
+    for q in tol.REL_SCALARS:
+        a, b = _scalar(sa, q), _scalar(sb, q)
+        if q == "vm_max":
+            a, b = _vm_location(sa)[0], _vm_location(sb)[0]
+        if math.isnan(a) or math.isnan(b):
+            continue  # not reported by one solver (e.g. no closed form)
+        tiny = _TINY * scale_of[q]
+        if abs(a) <= tiny and abs(b) <= tiny:
+            continue
+        rows.append((q, "rel", abs(a - b) / abs(b) if abs(b) > tiny else math.inf))
+    for q, cell in (("a_x", hx), ("a_y", hy)):
+        a, b = _scalar(sa, q), _scalar(sb, q)
+        if not (math.isnan(a) or math.isnan(b)) and cell > 0:
+            rows.append((q, "cells", abs(a - b) / cell))
+    for q in tol.AREA_SCALARS:
+        a, b = _scalar(sa, q), _scalar(sb, q)
+        if math.isnan(a) or math.isnan(b) or h <= 0:
+            continue
+        if abs(a) <= _TINY * a0**2 and abs(b) <= _TINY * a0**2:
+            continue
+        ra = math.sqrt(max(a, 0.0) / math.pi) if math.isfinite(a) else math.nan
+        rb = math.sqrt(max(b, 0.0) / math.pi) if math.isfinite(b) else math.nan
+        rows.append((q, "cells", abs(ra - rb) / h))
+    la, lb = _vm_location(sa), _vm_location(sb)
+    if all(math.isfinite(v) for v in la + lb):
+        d = np.subtract(la[1:], lb[1:])
+        cells = np.array([hx, hy, hz if hz > 0 else h])
+        cells[cells <= 0] = h if h > 0 else 1.0
+        rows.append(("vm_max_loc", "cells", float(np.linalg.norm(d / cells))))
+        rows.append(("vm_max_loc", "a0", float(np.linalg.norm(d)) / a0))
+    return rows
+
+
+# ------------------------------------------------------------------ per case
+
+
+def point_rows(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
+    """The metric rows of one sweep point, before the verdict: every pair, every common
+    output step, with the status and tolerance the comparisons see themselves."""
+    a0, p0 = case.hertz_scales
+    mu_P = friction_scale(case)
+    x0, y0 = case.stress.x0, case.stress.y0
+    own = {n: solvers.record(n).cell_size(case) for n in results}
+    records = []
+    for sa_name, sb_name in pairs(list(results)):
+        pair = f"{sa_name}-{sb_name}"
+        cell = max((c for c in (own[sa_name], own[sb_name]) if math.isfinite(c)),
+                   default=0.0)
+        steps_a = {s.number(i): s for i, s in enumerate(results[sa_name].steps)}
+        steps_b = {s.number(i): s for i, s in enumerate(results[sb_name].steps)}
+        for n in sorted(set(steps_a) & set(steps_b)):
+            sa, sb = steps_a[n], steps_b[n]
+            rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=x0, y0=y0,
+                                 singular_edge="vm_max" in case.not_converged, cell=cell)
+            cycle = _scalar(sb, "cycle")
+            if math.isfinite(cycle):
+                rows += compare_tables(results[sa_name].tables, results[sb_name].tables,
+                                       cycle, mu_P)
+            unsure = ""
+            if any(q == "vm_max_loc" for q, _, _ in rows):
+                unsure = maxima.ambiguity(
+                    {sa_name: sa, sb_name: sb},
+                    {sa_name: _vm_location(sa), sb_name: _vm_location(sb)},
+                    tol.tolerance(case, pair, "vm_max_loc", "a0")[0] * a0,
+                    tol.tolerance(case, pair, "vm_max", "rel")[0], x0, y0)
+            for quantity, metric, value in rows:
+                kink = metric == KINK  # shown beside the max's tolerance, never gated
+                limit, key = tol.tolerance(case, pair, quantity, "max" if kink else metric)
+                status, note = tol.status(case, quantity)
+                if kink and status == tol.GATED:
+                    status, note = tol.NOT_CONVERGED, KINK_NOTE
+                if quantity == "vm_max_loc" and unsure and status == tol.GATED:
+                    status, note = tol.NOT_CONVERGED, "not determined: " + unsure
+                records.append({
+                    "status": status, "note": note,
+                    "quantity": quantity, "pair": pair, "metric": metric, "value": value,
+                    "tolerance": limit, "case": case.name, "param": case.param, "step": n,
+                    "s": _scalar(sb, "s"), "cycle": _scalar(sb, "cycle"),
+                    "tolerance_key": key,
+                })
+    frame = pd.DataFrame.from_records(records, columns=METRICS_COLUMNS + EXTRA_COLUMNS)
+    return frame
+
+
+def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
+    """metrics.csv rows of one sweep point alone: :func:`point_rows` with the verdict of
+    :func:`reports.compare.verdict.decide` (a run decides its rows once, with its studies)."""
+    return decide(point_rows(case, results))

@@ -1,0 +1,1 @@
+"""Solver records, error budgets, tolerances and the errors the CLI reports."""

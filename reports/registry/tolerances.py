@@ -1,0 +1,209 @@
+"""Compared quantities, their metrics, the tolerance naming scheme and the defaults.
+
+Naming scheme (documented in ``cases/README.md``):
+
+================  ==================  ===================================================
+quantity          metrics             meaning
+================  ==================  ===================================================
+p_n, p_x, p_y     l2, max             surface tractions over the contact (where both
+wear_a, wear_b                        solvers have p_n > 0) and wear depths of body a / b
+vm_xz, vm_yz      l2, max             σ_VM on the xz / yz plane through the load centre
+p_max, w_max,     rel                 scalars of ``summary.csv``; ``vm_max_below`` is the
+wear_volume,                          σ_VM maximum over the planes at depth z ≥
+vm_max,                               ``stress.z_below`` (set in the case), the converged
+vm_max_below                          companion of a singular surface maximum
+a_x, a_y          cells               contact semi-widths through the centre
+contact_area,     cells               equivalent radius √(A/π) of the contact / stick zone
+stick_area
+vm_max_loc        cells, a0           distance between the σ_VM maxima
+loop_q            max                 fretting loop Q(δ) of an output cycle (table
+                                      ``loops``), max |Q_A − Q_B| / μP over its points
+energy            rel                 energy dissipated in that cycle (table ``cycles``)
+================  ==================  ===================================================
+
+Metrics, with A the first and B the second (reference) solver of the pair:
+``l2`` = ‖A − B‖₂ / ‖B‖₂ and ``max`` = max|A − B| / max|B| on common sample points (for
+``p_x`` and ``p_y`` the denominators are the norms of B's whole tangential traction
+|p_t| = √(p_x² + p_y²), so a component that is nearly zero in both is not inflated);
+max norms leave out the *edge band*, the sample points within one cell of either
+solver's contact boundary (on the planes: within one cell of the boundary's surface
+points), where a cell average and a point value of a traction that drops to zero inside
+the cell differ by a fraction of the traction itself — O(1) for the step-like pressure
+edge of a worn contact at any grid size (:mod:`reports.compare.metrics`); the L2 norms, the
+semi-widths and the contact area still measure the edge (except the plane L2 norms of a
+case that declares ``vm_max`` not converged, a log-singular edge: they leave out the
+band too); the max norms of ``p_x``, ``p_y``, ``vm_xz`` and ``vm_yz`` also leave out the
+*stick band*, the points within one cell (the coarser solver's own cell) of either
+solver's stick–slip boundary, where the traction has a √(c − r) kink that no field held
+at points h apart follows (docs/formulation.md §2.7): the max over that band is written
+as the metric ``kink`` beside the max's tolerance, with status "not converged", and is
+never gated (it has no tolerance key);
+``rel`` = |A − B| / |B|; for ``loop_q`` ``max`` = max over the cycle's loop points of
+|Q_A − Q_B| (the tangential load vector on body a) / μP, μ the friction coefficient along
+the path direction and P the case's Hertz load (:func:`reports.compare.metrics.friction_scale`),
+the points of the two loops matched by their imposed displacements (loops of different
+paths are not compared); ``cells`` = a length difference in units of the coarser of the
+two solvers' cell sizes (the larger of the sample spacing and each solver's own cell,
+``SolverRecord.cell_size``: the FEM's element size); ``a0`` = a length difference in
+units of the Hertz radius.
+
+Tolerance keys: the quantity name for a single-metric quantity (``p_max``, ``a_x``), else
+``<quantity>_<metric>`` (``p_n_l2``, ``vm_xz_max``, ``vm_max_loc_cells``); prefixed with a
+pair and a dot (``"ic-fem.p_max"``, a quoted TOML key) it applies to that pair only.
+Lookup order: pair-specific key in the case, plain key in the case, default of the pair.
+
+Not converged.  A quantity that is not a converged number is compared and shown but not
+gated: its metric rows carry ``status`` "not converged" and a ``note`` saying why.  Two
+sources: the case file's ``[not_converged]`` table (quantity -> the reason, with the
+measured values; for a quantity the code knows to be singular, e.g. the surface σ_VM
+maximum at the step-like edge of a worn frictional pin, docs/formulation.md §2.6), and a
+grid study of the run (``run --convergence``) whose status for the quantity is neither
+converged nor exact for either solver of the pair (:func:`reports.studies.gridstudy.flags`).
+A third, for ``vm_max_loc`` only: a σ_VM field with a rival maximum, farther than the
+location tolerance from the global one and within the ``vm_max`` tolerance of it, in
+either solver — where the maximum lies is then not determined (:mod:`reports.compare.maxima`).
+A case file may not both declare a quantity not converged and set a tolerance for it, and
+declaring ``vm_max`` needs ``stress.z_below``: its companion ``vm_max_below`` is gated
+instead.
+
+Defaults.  Each solver has an *error budget* per metric: the error it is expected to make
+against the exact solution at the resolution the bundled cases use (quick grids
+included), held in its registry record (:mod:`reports.registry.solvers`, where the reasoning is);
+the default tolerance of a pair is the sum of its two budgets, because by the triangle
+inequality |A − B| ≤ |A − exact| + |B − exact|.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from cases.model import Case, CaseError
+from reports.registry import solvers
+
+SURFACE_FIELDS = ("p_n", "p_x", "p_y", "wear_a", "wear_b")
+PLANE_FIELDS = {"vm_xz": "xz", "vm_yz": "yz"}
+REL_SCALARS = ("p_max", "w_max", "wear_volume", "vm_max", "vm_max_below")
+LENGTH_SCALARS = ("a_x", "a_y")
+AREA_SCALARS = ("contact_area", "stick_area")
+#: quantities computed from the solvers' tables per cycle (fretting): table, metric
+TABLE_QUANTITIES = {"loop_q": ("loops", "max"), "energy": ("cycles", "rel")}
+
+#: quantity -> its metrics, in the order rows are written.
+METRICS: dict[str, tuple[str, ...]] = {
+    **{q: ("l2", "max") for q in SURFACE_FIELDS},
+    **{q: ("l2", "max") for q in PLANE_FIELDS},
+    **{q: ("rel",) for q in REL_SCALARS},
+    **{q: ("cells",) for q in LENGTH_SCALARS + AREA_SCALARS},
+    "vm_max_loc": ("cells", "a0"),
+    **{q: (m,) for q, (_, m) in TABLE_QUANTITIES.items()},
+}
+
+def tolerance_key(quantity: str, metric: str) -> str:
+    """The tolerance key of a (quantity, metric): bare for single-metric quantities."""
+    return quantity if len(METRICS[quantity]) == 1 else f"{quantity}_{metric}"
+
+
+#: every valid (pair-less) tolerance key -> (quantity, metric)
+KEYS: dict[str, tuple[str, str]] = {
+    tolerance_key(q, m): (q, m) for q, ms in METRICS.items() for m in ms
+}
+
+
+def budget(solver: str, quantity: str, metric: str) -> float:
+    """Expected error of one solver against the exact solution (its registry record)."""
+    return solvers.record(solver).budget(quantity, metric)
+
+
+def default_tolerance(pair: str, quantity: str, metric: str) -> float:
+    """Default tolerance of a pair ``"A-B"``: the sum of the two solvers' budgets."""
+    a, _, b = pair.partition("-")
+    return budget(a, quantity, metric) + budget(b, quantity, metric)
+
+
+def tolerance(case: Case, pair: str, quantity: str, metric: str) -> tuple[float, str]:
+    """(tolerance, the key it came from) for one metric of one pair of a case."""
+    key = tolerance_key(quantity, metric)
+    for candidate in (f"{pair}.{key}", key):
+        if candidate in case.tolerances:
+            return case.tolerances[candidate], candidate
+    return default_tolerance(pair, quantity, metric), f"default:{key}"
+
+
+def check_keys(case: Case, solver_names: list[str]) -> None:
+    """Refuse tolerance keys that name no quantity, metric or pair (typos would be ignored)."""
+    for raw in case.tolerances:
+        pair, dot, key = raw.rpartition(".")
+        if key not in KEYS:
+            known = ", ".join(sorted(KEYS))
+            raise CaseError(f"tolerances.{raw}: unknown tolerance key {key!r} (known: {known})")
+        if dot:
+            a, dash, b = pair.partition("-")
+            if not dash or a not in solver_names or b not in solver_names or a == b:
+                raise CaseError(
+                    f"tolerances.{raw}: {pair!r} is not a solver pair "
+                    f"(write e.g. \"{'-'.join(solver_names[:2])}.{key}\")"
+                )
+        if not math.isfinite(case.tolerances[raw]):
+            raise CaseError(f"tolerances.{raw}: must be finite")
+        if KEYS[key][0] in case.not_converged:
+            raise CaseError(f"tolerances.{raw}: {KEYS[key][0]!r} is declared not converged "
+                            "([not_converged]); it is not gated, so a tolerance for it is "
+                            "meaningless (remove one of the two)")
+    for quantity in case.not_converged:
+        if quantity not in METRICS:
+            raise CaseError(f"not_converged.{quantity}: unknown quantity (known: "
+                            f"{', '.join(sorted(METRICS))})")
+    if "vm_max" in case.not_converged and case.stress.z_below is None:
+        raise CaseError("not_converged.vm_max needs its converged companion: set "
+                        "stress.z_below, the depth [mm] below which vm_max_below is gated")
+
+
+#: the ``status`` of a metric row
+GATED, NOT_CONVERGED = "gated", "not converged"
+
+
+def status(case: Case, quantity: str) -> tuple[str, str]:
+    """(status, note) of a quantity's metric rows from the case file."""
+    if quantity in case.not_converged:
+        return NOT_CONVERGED, "declared: " + " ".join(case.not_converged[quantity].split())
+    return GATED, ""
+
+
+#: ``tolerance_kind`` of a metric row: the pair's default (the sum of its two budgets), a
+#: key of the case file, or the combined uncertainty of grid studies
+#: (:mod:`reports.studies.uncertainty`)
+BUDGET, CASE, UNCERTAINTY = "budget", "case", "uncertainty"
+KINDS = (BUDGET, CASE, UNCERTAINTY)
+#: the columns metrics.csv holds about a row's tolerance, after those of the comparison
+TOLERANCE_COLUMNS = ["tolerance_kind", "budget", "uncertainty"]
+
+
+def kind_of(tolerance_key: str) -> str:
+    """The kind of a tolerance found by :func:`tolerance`."""
+    return BUDGET if tolerance_key.startswith("default:") else CASE
+
+
+def with_tolerance_columns(metrics: pd.DataFrame) -> pd.DataFrame:
+    """``metrics`` with :data:`TOLERANCE_COLUMNS` present: from the tolerance key and the
+    tolerance where they are missing (a fresh comparison, or a file an older run wrote)."""
+    out = metrics.copy()
+    if "tolerance_kind" not in out.columns:
+        keys = out["tolerance_key"].fillna("") if "tolerance_key" in out.columns else \
+            pd.Series("default:", index=out.index)
+        out["tolerance_kind"] = [kind_of(str(k)) for k in keys]
+    if "budget" not in out.columns:
+        out["budget"] = out["tolerance"].astype(float)
+    if "uncertainty" not in out.columns:
+        out["uncertainty"] = math.nan
+    return out
+
+
+def passes(value, tolerance) -> np.ndarray:
+    """The pass rule, the only place ``passed`` is computed: a metric passes iff value and
+    tolerance are finite numbers and value <= tolerance (elementwise)."""
+    v, t = np.asarray(value, float), np.asarray(tolerance, float)
+    with np.errstate(invalid="ignore"):
+        return np.isfinite(v) & np.isfinite(t) & (v <= t)

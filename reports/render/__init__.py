@@ -1,0 +1,1 @@
+"""What reads a results directory for people: HTML report, plots, gate, baselines."""

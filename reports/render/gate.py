@@ -1,0 +1,170 @@
+"""``contact-vv gate``: print the metrics table; fail on any failed metric (``passed``
+recomputed from value and tolerance; a recorded ``passed`` that disagrees is a problem
+too), non-converged run, incomplete or damaged case, naming each.  Quantities whose grid
+study (``run --convergence``, :mod:`reports.studies.gridstudy`) is not converged are printed as
+``NOT CONVERGED (grid) …`` notes with their three values; metric rows whose ``status`` is
+"not converged" (declared in the case file or from that study, :mod:`reports.registry.tolerances`)
+are printed as ``NOT GATED …`` notes with their value and reason: neither fails the gate."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import TextIO
+
+import pandas as pd
+
+from reports.registry.errors import RunFailed, UserError
+from reports.registry.tolerances import UNCERTAINTY
+from reports.store.layout import METRICS
+from reports.store.readers import gated, ungated
+from reports.store.results import CaseResults, Scan, not_converged, scan
+from reports.studies.gridstudy import note_lines
+from reports.studies.jumpstudy import note_lines_jump
+
+_SHOW = ["case", "param", "step", "pair", "quantity", "metric", "value", "tolerance",
+         "passed", "status", "tolerance_key", "tolerance_kind", "budget", "uncertainty"]
+
+
+def metrics_table(results: Scan) -> pd.DataFrame:
+    """All cases' metrics in one table (case, param, step, pair, quantity, ...)."""
+    frames = [c.metrics.assign(case=c.name) for c in results.complete if not c.metrics.empty]
+    if not frames:
+        return pd.DataFrame(columns=_SHOW)
+    table = pd.concat(frames, ignore_index=True)
+    return table[[c for c in _SHOW if c in table.columns]]
+
+
+def _where(case: str, param: object, step: object) -> str:
+    param = "" if pd.isna(param) else str(param)
+    return case + (f" [{param}]" if param else "") + (
+        f" step {int(step)}" if not pd.isna(step) else "")
+
+
+def _num(x: float) -> str:
+    return f"{x:.4g}"
+
+
+def metric_problems(case: CaseResults) -> list[str]:
+    """One line per failed metric of a case (``passed`` as recomputed from value and
+    tolerance, :func:`reports.registry.tolerances.passes`) and per metric whose recorded ``passed``
+    disagrees with that."""
+    lines = []
+    on = gated(case.metrics).to_numpy()
+    for k, r in enumerate(case.metrics.itertuples(index=False)):
+        what = f"{_where(case.name, r.param, r.step)} {r.pair} {r.quantity} {r.metric}"
+        value, tol = float(r.value), float(r.tolerance)
+        if on[k] and not r.passed:
+            key = getattr(r, "tolerance_key", "")
+            if not math.isfinite(value):
+                why = f"= {value} (not a finite number; tolerance {_num(tol)})"
+            elif not math.isfinite(tol):
+                why = f"= {_num(value)} against tolerance {tol} (not a finite number)"
+            else:
+                why = f"= {_num(value)} > tolerance {_num(tol)}"
+            if r.tolerance_kind == UNCERTAINTY:
+                why += (f" (the combined uncertainty of the grid studies; budget "
+                        f"{_num(float(r.budget))}, tolerance key {key})")
+            elif isinstance(key, str) and key:
+                why += f" (tolerance key {key})"
+            lines.append(f"FAIL {what} {why}")
+        if bool(r.passed_recorded) != bool(r.passed):
+            lines.append(f"INCONSISTENT {what}: {case.path / METRICS} records passed = "
+                         f"{bool(r.passed_recorded)}, but value {_num(value)} against "
+                         f"tolerance {_num(tol)} {'passes' if r.passed else 'fails'}")
+    return lines
+
+
+def ungated_lines(case: CaseResults) -> list[str]:
+    """One ``NOT GATED …`` note per quantity of a case that is not converged
+    (:func:`reports.store.readers.ungated`), with its largest value and the reason."""
+    return [f"NOT GATED {case.name} {r.pair} {r.quantity} {r.metric} ({r.rows} row(s), "
+            f"largest {_num(float(r.value))} at {_where('', r.param, r.step).strip()}): "
+            f"not converged; {r.note}" for r in ungated(case.metrics).itertuples(index=False)]
+
+
+def case_problems(results: Scan) -> list[str]:
+    """One line per incomplete and per damaged case."""
+    return ([f"INCOMPLETE {name}: {reason}" for name, reason in results.incomplete.items()]
+            + [f"DAMAGED {name}: {reason}" for name, reason in results.damaged.items()])
+
+
+def problems(results: Scan) -> list[str]:
+    """One line per failed or inconsistent metric, non-converged run, incomplete and
+    damaged case."""
+    lines = []
+    for case in results.complete:
+        lines += metric_problems(case)
+    for case in results.complete:
+        for r in not_converged(case.summary).itertuples(index=False):
+            lines.append(f"NOT CONVERGED {_where(case.name, r.param, r.step)} "
+                         f"solver {r.solver}")
+    return lines + case_problems(results)
+
+
+def stale_case_file(mf: dict) -> bool:
+    """Whether the case file of a run exists and no longer has the recorded hash."""
+    from reports.store.manifest import sha256_file
+
+    path = Path(str(mf.get("case_file", "")))
+    return path.is_file() and sha256_file(path) != mf.get("case_sha256")
+
+
+def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None = None,
+             update_baseline: Path | None = None, drift_tol: float | None = None) -> int:
+    """Print the table and the problems; 0 if none, else :class:`RunFailed` carrying one
+    line per problem (after printing them: the CLI repeats them as errors, exit 1).
+
+    ``baseline``: also fail on key numbers that drifted from the baselines in that folder
+    (a baseline folder that cannot be read is a :class:`UserError`, before any output);
+    ``update_baseline``: write the baselines of the current results there instead.
+    """
+    import sys
+
+    from reports.render import baseline as bl
+
+    stream = stream or sys.stdout
+    results = scan(out)
+    if results.empty:
+        raise UserError(f"no results in {out} (run `contact-vv run` first)")
+    if update_baseline is not None:
+        if results.incomplete or results.damaged:
+            raise UserError("refusing to update baselines from incomplete or damaged "
+                            "results: " + ", ".join([*results.incomplete, *results.damaged]))
+        for path in bl.write(results, update_baseline):
+            print(f"baseline written: {path}", file=stream)
+        return 0
+    found = problems(results)
+    if baseline is not None:
+        found += bl.drift(results, baseline, bl.DEFAULT_DRIFT if drift_tol is None
+                          else drift_tol)
+    table = metrics_table(results)
+    with pd.option_context("display.max_rows", None, "display.width", 200,
+                           "display.max_colwidth", 40):
+        print(table.to_string(index=False) if not table.empty else "(no metrics)", file=stream)
+    for case in results.complete:
+        for solver, reason in case.manifest.get("skipped", {}).items():
+            print(f"note: {case.name}: solver {solver} not run ({reason})", file=stream)
+        if case.manifest.get("sources_changed_during_run"):
+            print(f"note: {case.name}: solver sources changed during the run; its numbers "
+                  "may mix two versions (re-run)", file=stream)
+        if stale_case_file(case.manifest):
+            print(f"note: {case.name}: the case file {case.manifest.get('case_file')} changed "
+                  "since the run (re-run to check the current version)", file=stream)
+        for line in (note_lines(case.name, case.convergence)
+                     + note_lines_jump(case.name, case.jump_study) + ungated_lines(case)):
+            print(line, file=stream)  # information, not failures
+    on = gated(table)
+    n_ok = int((table["passed"].astype(bool) & on).sum())
+    n_off = int((~on).sum())
+    n_u = int((on & (table["tolerance_kind"] == UNCERTAINTY)).sum())
+    print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table) - n_off} metric(s) "
+          "passed" + (f" ({n_u} against the combined uncertainty of grid studies)"
+                      if n_u else "")
+          + (f", {n_off} not gated (not converged)" if n_off else "")
+          + f", {len(found)} problem(s)", file=stream)
+    for line in found:
+        print(line, file=stream)
+    if found:
+        raise RunFailed(found)
+    return 0

@@ -1,0 +1,1 @@
+"""Planning, running and writing cases: units, executors, runner, sweeps, thresholds."""

@@ -1,0 +1,188 @@
+"""Planning a run: a case file and its sweep points validated, the solvers that apply to
+each point chosen (:mod:`reports.registry.solvers`), hopeless grids refused before any work."""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from cases.loader import case_path, load_case
+from cases.model import Case, CaseError
+from reports.registry import solvers
+from reports.registry.errors import SolverUnavailable, UserError
+from reports.registry.tolerances import check_keys
+
+
+def check_fits(case: Case) -> None:
+    """Refuse a case whose contact cannot fit in the potential contact grid.
+
+    The solvers detect a contact touching the grid edge during the run; this catches
+    the hopeless cases before any work: the expected radius must leave at least one
+    cell free on each side.
+    """
+    a = case.expected_radius
+    g = case.grid
+    for key, half, cell in (("grid.Lx", g.Lx / 2, g.dx), ("grid.Ly", g.Ly / 2, g.dy)):
+        if a >= half - cell:
+            where = f" [{case.param}]" if case.param else ""
+            raise CaseError(
+                f"{key} = {2 * half:g} mm{where}: the expected contact radius {a:.4g} mm "
+                f"reaches the edge of the potential contact grid (half-width {half:g} mm, "
+                f"cell {cell:.3g} mm); enlarge grid.Lx/grid.Ly")
+
+
+def grid_warning(case: Case) -> str | None:
+    """A fretting case whose worn contact may outgrow the grid
+    (:attr:`cases.model.Case.worn_radius_estimate`), said before any work: the run is not
+    refused (the estimate is too large where a stick zone stays) but stops at the grid
+    edge if the contact reaches it."""
+    a = case.worn_radius_estimate
+    g = case.grid
+    if a is None or a < min(g.Lx / 2 - g.dx, g.Ly / 2 - g.dy):
+        return None
+    where = f" [{case.param}]" if case.param else ""
+    need = 2.0 * a + 4.0 * max(g.dx, g.dy)
+    return (f"{case.name}{where}: grid.Lx x grid.Ly = {g.Lx:g} x {g.Ly:g} mm: by Archard's "
+            f"law with gross slip in every cycle the worn contact may reach r = {a:.3g} mm "
+            f"by cycle {case.fretting.cycles:g} (less where a stick zone stays); if it "
+            f"reaches the grid edge the run stops there; grid.Lx = grid.Ly = {need:.3g} mm "
+            "keeps it inside")
+
+
+def available_memory() -> float:
+    """Memory the machine has available now [bytes] (MemAvailable of /proc/meminfo, else
+    the free physical pages)."""
+    try:
+        with open("/proc/meminfo") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return float(line.split()[1]) * 1024
+    except OSError:
+        pass
+    return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_AVPHYS_PAGES"))
+
+
+@dataclass(frozen=True)
+class Limits:
+    """What one unit of a run may take: memory [bytes] (default: 90 % of what the
+    machine has available) and wall time [h] by the solvers' own estimates."""
+
+    memory: float | None = None
+    hours: float = 48.0
+
+    def check(self, case: Case, solver: str) -> None:
+        """CaseError naming the keys to change when ``solver``'s estimate for ``case``
+        exceeds a limit."""
+        cost = solvers.estimate(solver, case)
+        if cost is None:
+            return
+        where = f"{case.name}" + (f" [{case.param}]" if case.param else "")
+        memory, source = self.memory, "--max-memory"
+        if memory is None:
+            memory, source = 0.9 * available_memory(), "90 % of the available memory"
+        if cost.memory > memory:
+            raise CaseError(
+                f"{where}: solver {solver} would need about {cost.memory / 2**30:.3g} GiB "
+                f"(limit {memory / 2**30:.3g} GiB, {source}); reduce "
+                f"{', '.join(cost.memory_keys)} (or set --max-memory)")
+        if cost.seconds > 3600.0 * self.hours:
+            raise CaseError(
+                f"{where}: solver {solver} would run for about {cost.seconds / 3600:.3g} h "
+                f"(limit {self.hours:g} h); reduce {', '.join(cost.time_keys)} (or set "
+                "--max-hours)")
+
+
+@dataclass
+class CasePlan:
+    """What to run for one case: its sweep points and the solvers that apply."""
+
+    name: str
+    source: Path
+    points: list[Case]
+    solvers: list[str]
+    skipped: dict[str, str] = field(default_factory=dict)
+    quick: bool = False
+    overrides: dict[str, Any] = field(default_factory=dict)
+    sweep: dict[str, Any] | None = None
+    dir_name: str = ""
+    staging: Path | None = None  # set by the runner: where output steps are streamed
+    convergence: bool = False  # run --convergence: grid studies (reports.studies.gridstudy)
+    grids: list[Any] = field(default_factory=list)  # their coarse runs (GridRun)
+    jump_study: bool = False  # run --jump-study: cycle-jump studies (reports.studies.jumpstudy)
+    jumps: list[Any] = field(default_factory=list)  # their runs at J/2, J/4 (GridRun)
+    warnings: list[str] = field(default_factory=list)  # said before any work (grid_warning)
+
+    def units(self) -> list[tuple[int, str]]:
+        """(point index, solver) pairs to run, point-major, solvers in registry order."""
+        return [(i, s) for i, case in enumerate(self.points) for s in self.solvers
+                if s in self.applicable(case)]
+
+    def applicable(self, case: Case) -> list[str]:
+        return [s for s in self.solvers if solvers.unsupported(s, case) is None]
+
+
+def select_solvers(requested: list[str] | None) -> tuple[list[str], dict[str, str]]:
+    """(usable solvers, {skipped solver: reason}).
+
+    Without an explicit request every registered solver is tried and unavailable ones
+    are skipped; an explicitly requested solver that cannot load is an error.
+    """
+    known = solvers.names()
+    if requested:
+        unknown = [s for s in requested if s not in known]
+        if unknown:
+            raise UserError(f"unknown solver(s) {', '.join(unknown)} (known: {', '.join(known)})")
+        for s in requested:
+            solvers.resolve(s)  # raises SolverUnavailable with the reason
+        return [s for s in known if s in requested], {}
+    usable, skipped = [], {}
+    for s in known:
+        ok, reason = solvers.available(s)
+        if ok:
+            usable.append(s)
+        else:
+            skipped[s] = reason
+    if not usable:
+        raise SolverUnavailable("no solver is available: " + "; ".join(skipped.values()))
+    return usable, skipped
+
+
+def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
+              overrides: dict[str, Any] | None = None, skipped: dict[str, str] | None = None,
+              points: list[Case] | None = None, sweep: dict[str, Any] | None = None,
+              dir_name: str | None = None, limits: Limits | None = None,
+              explicit: bool = True) -> CasePlan:
+    """Load and validate a case (``CaseError`` on bad input, or a unit beyond the
+    ``limits``) and plan its runs (the grid studies of ``run --convergence`` are added by
+    :func:`reports.studies.gridstudy.add_grids`).  ``explicit``: the solvers were named by the
+    user; otherwise a solver that runs on a case only on request
+    (:func:`reports.registry.solvers.not_by_default`) is left out with its reason."""
+    source = case_path(ref)
+    if points is None:
+        points = load_case(source, quick=quick, overrides=overrides)
+    warnings = []
+    for case in points:
+        check_keys(case, solvers.names())
+        check_fits(case)
+        if (w := grid_warning(case)) is not None:
+            warnings.append(w)
+    name = points[0].name
+    plan = CasePlan(name=name, source=source, points=points, solvers=list(solver_names),
+                    skipped=dict(skipped or {}), quick=quick, overrides=dict(overrides or {}),
+                    sweep=sweep, dir_name=dir_name or name, warnings=warnings)
+    for s in plan.solvers:
+        reasons = [solvers.unsupported(s, c) for c in points]
+        if all(r is not None for r in reasons):
+            plan.skipped[s] = reasons[0]
+    if not explicit:
+        for s in [s for s in plan.solvers if s not in plan.skipped]:
+            reason = next((r for c in points if (r := solvers.not_by_default(s, c))), None)
+            if reason is not None:
+                plan.skipped[s] = reason
+                plan.solvers.remove(s)
+    limits = limits or Limits()
+    for i, s in plan.units():
+        limits.check(points[i], s)
+    return plan

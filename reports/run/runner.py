@@ -1,0 +1,246 @@
+"""Run a case (every sweep point) through the chosen solvers and write ``DIR/<case>/``.
+
+The output layout is described in :mod:`reports.store.layout`.  Everything is written into a
+staging directory ``DIR/.<case>.partial``; the manifest is written last and the staging
+directory is then renamed onto ``DIR/<case>``, so a case directory is either complete or
+absent, and files of two runs are never mixed.  A run that fails (a solver that does not
+converge, raises, or returns non-finite fields) leaves only the staging directory, with
+``failed.json`` naming the cause; ``report`` and ``gate`` flag it.  Every solver hands
+over each output step as soon as it is computed (``on_output``, :mod:`reports.registry.solvers`)
+and the serial executor writes it into the staging directory at once, so an interrupted
+long run keeps the steps it finished there (``fields/<solver>/<param>/``).
+Runs do not resume: re-running says so, discards the staging directory and restarts the
+case cleanly.  With ``plan.convergence`` (``run --convergence``) the coarse grids of the
+grid studies run after the case's own units, through the same executor, and
+``convergence.csv`` is written into the staging directory with the rest
+(:mod:`reports.studies.gridstudy`).
+
+The stages live in their own modules: planning (:mod:`reports.run.plan`), one unit
+(:mod:`reports.run.units`), writing (:mod:`reports.store.write`), the staging directory
+(:mod:`reports.store.staging`); this module runs them for a whole case.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import os
+import time
+import traceback
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+from tqdm.auto import tqdm
+
+from cases.result import RunResult, atomic_write_text
+from reports.compare import verdict
+from reports.compare.metrics import point_rows
+from reports.registry.errors import UserError
+from reports.registry.tolerances import TOLERANCE_COLUMNS
+from reports.run import study_runs
+from reports.run.plan import CasePlan
+from reports.run.units import UnitOutcome, failure_line, serial_executor
+from reports.store import layout, manifest
+from reports.store.event_table import events_frame
+from reports.store.staging import case_lock, claim_staging, remove_dir
+from reports.store.write import jsonable, summary_frame, write_csv, write_unit
+from reports.studies import gridstudy, jumpstudy, uncertainty
+
+
+@dataclass
+class CaseRun:
+    """What happened to one case: where it went, failures, timings."""
+
+    name: str
+    path: Path | None
+    failures: list[str] = field(default_factory=list)
+    user_error: bool = False
+    wall_s: float = 0.0
+    unit_wall_s: float = 0.0
+    metrics: pd.DataFrame | None = None
+
+
+Executor = Callable[[CasePlan, list[tuple[int, str]], bool], Iterable[UnitOutcome]]
+
+
+@dataclass
+class _Collected:
+    """What the units of a case produced so far: summary rows per (point, solver),
+    event rows per (point, solver) of the solvers that watch for events, metrics per
+    complete point, manifest records, failures."""
+
+    rows: dict[tuple[int, int], list[dict[str, Any]]] = field(default_factory=dict)
+    events: dict[tuple[int, int], list[dict[str, Any]]] = field(default_factory=dict)
+    metrics: dict[int, pd.DataFrame] = field(default_factory=dict)
+    records: list[dict[str, Any]] = field(default_factory=list)
+    failures: list[UnitOutcome] = field(default_factory=list)
+
+
+def _failed(outcome: UnitOutcome, what: str, exc: Exception) -> UnitOutcome:
+    """``outcome`` turned into an internal failure: ``what`` failed with ``exc``."""
+    return dataclasses.replace(outcome, result=None, kind="internal",
+                               detail=traceback.format_exc(),
+                               error=f"{what} failed: {type(exc).__name__}: {exc}")
+
+
+def _collect(plan: CasePlan, staging: Path, executor: Executor, progress: bool | None
+             ) -> _Collected:
+    """Run the units of ``plan``, writing each into ``staging`` and comparing each sweep
+    point as soon as all its solvers are done; stop at the first failure."""
+    units = plan.units()
+    expected: dict[int, set[str]] = {}
+    for i, s in units:
+        expected.setdefault(i, set()).add(s)
+    order = {s: k for k, s in enumerate(plan.solvers)}
+    pending: dict[int, dict[str, RunResult]] = {}
+    got = _Collected()
+    bar = tqdm(total=len(units), desc=plan.dir_name, unit="run", leave=False,
+               disable=None if progress is None else not progress)
+    try:
+        for outcome in executor(plan, units, bool(progress)):
+            bar.update(1)
+            bar.set_postfix_str(f"{outcome.solver} {outcome.param}".strip())
+            got.records.append({
+                "solver": outcome.solver, "param": outcome.param, "wall_s": outcome.wall_s,
+                "ok": outcome.result is not None, "error": outcome.error,
+                "kind": outcome.kind,
+                "meta": jsonable(outcome.result.meta) if outcome.result else {}})
+            if outcome.result is None:
+                got.failures.append(outcome)
+                break
+            try:
+                got.rows[(outcome.index, order[outcome.solver])] = write_unit(
+                    staging, outcome.result, solver=outcome.solver, param=outcome.param,
+                    cell_size=outcome.cell_size, wall_s=outcome.wall_s,
+                    written=outcome.steps_written, case=plan.points[outcome.index])
+                if outcome.result.events is not None:
+                    got.events[(outcome.index, order[outcome.solver])] = \
+                        outcome.result.event_rows()
+            except Exception as exc:  # a result that cannot be written is a failed run
+                got.failures.append(_failed(outcome, "writing its results", exc))
+                break
+            bucket = pending.setdefault(outcome.index, {})
+            bucket[outcome.solver] = outcome.result
+            if set(bucket) != expected[outcome.index]:
+                continue
+            ordered = {s: bucket[s] for s in sorted(bucket, key=order.get)}
+            try:
+                got.metrics[outcome.index] = point_rows(plan.points[outcome.index], ordered)
+            except Exception as exc:  # a result the comparisons cannot digest
+                got.failures.append(_failed(outcome, "comparing its results", exc))
+                break
+            del pending[outcome.index]
+    finally:
+        bar.close()
+    return got
+
+
+def _manifest_body(plan: CasePlan, got: _Collected, t0: float, unit_wall: float,
+                   sources: dict[str, str]) -> dict[str, Any]:
+    """The manifest of a complete case: what ran, on what, from which sources."""
+    return {
+        "case": plan.name,
+        "dir": plan.dir_name,
+        "kind": plan.points[0].kind,
+        "description": plan.points[0].description,
+        "case_file": str(plan.source),
+        "case_sha256": manifest.sha256_file(plan.source),
+        "quick": plan.quick,
+        "overrides": plan.overrides,
+        "sweep": plan.sweep,
+        "params": [c.param for c in plan.points],
+        "points": [dict(dataclasses.asdict(c), hertz_a0=c.hertz_scales[0],
+                        hertz_p0=c.hertz_scales[1]) for c in plan.points],
+        "solvers": plan.solvers,
+        "skipped": plan.skipped,
+        "units": got.records,
+        "wall_s": time.perf_counter() - t0,
+        "unit_wall_s": unit_wall,
+        "provenance": manifest.provenance(),
+        "sources": sources,
+        "sources_changed_during_run": manifest.source_hashes() != sources,
+    }
+
+
+def execute(plan: CasePlan, out: Path, *, executor: Executor = serial_executor,
+            progress: bool | None = None, extra_manifest: dict[str, Any] | None = None
+            ) -> CaseRun:
+    """Run every unit of a plan and write the case directory (or leave it absent), holding
+    the case's lock throughout (:func:`reports.store.staging.case_lock`).
+
+    ``progress=None`` shows bars only on a terminal.  Failures are returned, not raised.
+    """
+    out = Path(out)
+    with case_lock(out, plan.dir_name):
+        return _execute(plan, out, executor, progress, extra_manifest or {})
+
+
+def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | None,
+             extra_manifest: dict[str, Any]) -> CaseRun:
+    t0 = time.perf_counter()
+    sources = manifest.source_hashes()
+    final = layout.case_dir(out, plan.dir_name)
+    if final.exists() and not (final.is_dir() and layout.only_own_files(final)):
+        raise UserError(f"{final} exists and is not a contact-vv result; refusing to replace "
+                        "it (choose another --out)")
+    staging = claim_staging(out, plan.dir_name)
+    plan.staging = staging
+    remove_dir(final)  # an older result must not outlive a newer, failing run
+
+    got = _collect(plan, staging, executor, progress)
+    study = None
+    if plan.convergence and not got.failures:  # the coarse grids of the grid studies
+        fine = {(i, plan.solvers[k]): rows for (i, k), rows in got.rows.items()}
+        study = study_runs.run_grids(plan, executor, progress, fine)
+        got.records += study.records
+    jumps = None
+    if plan.jump_study and plan.jumps and not got.failures:  # J/2 and J/4 of fretting runs
+        fine = {(i, plan.solvers[k]): rows for (i, k), rows in got.rows.items()}
+        jumps = study_runs.run_jumps(plan, executor, progress, fine)
+        got.records += jumps.records
+    unit_wall = float(sum(r["wall_s"] for r in got.records))
+    run = CaseRun(plan.dir_name, None, wall_s=time.perf_counter() - t0, unit_wall_s=unit_wall)
+    if got.failures:
+        run.failures = [failure_line(plan.name, f) for f in got.failures]
+        run.user_error = all(f.kind == "case" for f in got.failures)
+        atomic_write_text(staging / layout.FAILED, json.dumps(
+            {"case": plan.name, "failures": run.failures,
+             "details": [f.detail for f in got.failures if f.detail]}, indent=1))
+        return run
+
+    summary = summary_frame([r for key in sorted(got.rows) for r in got.rows[key]])
+    if study is not None:
+        write_csv(staging / layout.CONVERGENCE, study.table)
+        summary = gridstudy.flag_summary(summary, study.table)
+    if jumps is not None:
+        write_csv(staging / layout.JUMP_STUDY, jumps.table)
+        summary = jumpstudy.flag_summary_jump(summary, jumps.table)
+    write_csv(staging / layout.SUMMARY, summary)
+    if got.events:  # some solver watched for regime events (reports.store.event_table)
+        write_csv(staging / layout.EVENTS,
+                  events_frame([r for key in sorted(got.events) for r in got.events[key]]))
+    parts = [got.metrics[i] for i in sorted(got.metrics) if not got.metrics[i].empty]
+    if parts:  # the verdict, once, with the studies' evidence
+        rows = pd.concat(parts, ignore_index=True)
+        metrics = verdict.decide(
+            rows,
+            grid=None if study is None else gridstudy.flags(rows, study.table),
+            uncertainty=None if study is None else uncertainty.values(rows, study.table),
+            jump=None if jumps is None else jumpstudy.flags_jump(rows, jumps.table))
+    else:  # a single solver: the header only
+        metrics = pd.DataFrame(columns=verdict.METRICS_COLUMNS + (
+            TOLERANCE_COLUMNS if study is not None else []))
+    write_csv(staging / layout.METRICS, metrics)
+    body = _manifest_body(plan, got, t0, unit_wall, sources)
+    if plan.convergence:
+        body["convergence"] = study_runs.grid_manifest_entry(plan)
+    if plan.jump_study:
+        body["jump_study"] = study_runs.jump_manifest_entry(plan)
+    manifest.write(staging, {**body, **extra_manifest})
+    remove_dir(final)
+    os.replace(staging, final)
+    run.path, run.metrics = final, metrics
+    return run

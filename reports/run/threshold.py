@@ -1,0 +1,400 @@
+"""Thresholds as results: ``contact-vv threshold CASE --param KEY --event EVENT``.
+
+The parameter value (a dotted case key such as ``friction.mu``) at which an event of
+:mod:`reports.studies.events` changes, found by bisection per solver, per sweep point of the
+case (when it sweeps another key) and per grid:
+
+1. every (point, solver, grid) evaluates the event at both ends of the bracket
+   ``[lo, hi]`` (``--range``, else :data:`DEFAULTS`); the event must differ there, else
+   the command fails naming the solver, grid and key before any bisection;
+2. each then halves its bracket until it is at most ``--resolution`` wide: the threshold
+   is the bracket's midpoint, good to ± half its width (the event is assumed to change
+   once in the bracket; bisection finds one change if there are several).
+
+Grids are refinement factors of the solver's discretisation (``SolverRecord.refine``:
+``grid.nx, grid.ny`` for grid solvers, ``fem.h`` for the FEM; a closed form is sampled on
+the case grid, so it is refined like a grid solver); factor 1 is the case's own and
+``grid_shift`` is each grid's threshold minus that one.  The closed form's exact
+threshold, where :func:`reports.studies.events.exact_threshold` has one, is a row of solver
+``analytic`` with grid ``exact``.  Rows go to ``DIR/thresholds.csv``
+(:data:`COLUMNS`), merged with the rows of earlier threshold runs.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import math
+import sys
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from cases.loader import case_path, load_case
+from cases.model import Case, CaseError
+from cases.schema import SCHEMA, read_toml
+from reports.registry import solvers
+from reports.registry.errors import UserError
+from reports.run.plan import Limits, check_fits
+from reports.studies import events
+from reports.studies.events import EventOptions, EventUndefined, Exact, bisect, event
+
+#: default (bracket, resolution) per parameter
+DEFAULTS: dict[str, tuple[tuple[float, float], float]] = {
+    **{f"friction.{k}": ((0.0, 1.0), 0.01) for k in ("mu", "mu1", "mu2")},
+    "friction.beta": ((0.0, 90.0), 1.0)}
+#: the case grid and one coarser by 1.5
+DEFAULT_GRIDS = (1.0, 1.0 / 1.5)
+COLUMNS = ["case", "point", "event", "param", "at", "quick", "solver", "grid", "refine",
+           "cell_size", "threshold", "uncertainty", "resolution", "lo", "hi", "range_lo",
+           "range_hi", "evaluations", "grid_shift", "status", "wall_s"]
+
+
+# ------------------------------------------------------------------ the request
+
+
+@dataclass(frozen=True)
+class Request:
+    """What ``contact-vv threshold`` was asked for (module doc)."""
+
+    case: str
+    param: str
+    event: str
+    lo: float
+    hi: float
+    resolution: float
+    grids: tuple[float, ...] = DEFAULT_GRIDS
+    solvers: tuple[str, ...] = field(default_factory=lambda: tuple(solvers.names()))
+    quick: bool = False
+    overrides: dict[str, Any] = field(default_factory=dict)
+    options: EventOptions = EventOptions()
+    limits: Limits | None = None
+    explicit: bool = True  # the solvers were named (--solver): optional ones run too
+
+
+def check_param(param: str) -> None:
+    """UserError unless ``param`` is a real-valued dotted key of the case schema."""
+    node: Any = SCHEMA
+    for part in param.split("."):
+        if not isinstance(node, dict) or part not in node or part in ("sweep", "quick"):
+            raise UserError(f"--param {param!r}: not a case key (see cases/README.md)")
+        node = node[part]
+    if node is not float:
+        raise UserError(f"--param {param!r}: not a real-valued case key (a threshold is "
+                        "bisected on a number)")
+
+
+def bracket(param: str, given: tuple[float, float] | None, resolution: float | None
+            ) -> tuple[float, float, float]:
+    """(lo, hi, resolution): the given ones, else the defaults of ``param``."""
+    default = DEFAULTS.get(param)
+    if default is None and (given is None or resolution is None):
+        raise UserError(f"--param {param}: no default bracket; give --range LO HI and "
+                        "--resolution R")
+    lo, hi = given if given is not None else default[0]
+    res = resolution if resolution is not None else default[1]
+    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
+        raise UserError(f"--range {lo:g} {hi:g}: needs finite LO < HI")
+    if not (math.isfinite(res) and 0 < res < hi - lo):
+        raise UserError(f"--resolution {res:g}: needs 0 < R < HI - LO = {hi - lo:g}")
+    return lo, hi, res
+
+
+def parse_grids(text: str | None) -> tuple[float, ...]:
+    """``--grids F1,F2``: refinement factors (1 the case grid, 1.5 finer by 1.5, 1/1.5
+    or 0.5 coarser); a factor may be written ``A/B``."""
+    if text is None:
+        return DEFAULT_GRIDS
+    out = []
+    for token in (t.strip() for t in text.split(",") if t.strip()):
+        num, slash, den = token.partition("/")
+        try:
+            f = float(num) / (float(den) if slash else 1.0)
+        except (ValueError, ZeroDivisionError):
+            raise UserError(f"--grids {text!r}: {token!r} is not a number or A/B") from None
+        if not (math.isfinite(f) and f > 0):
+            raise UserError(f"--grids {text!r}: {token!r} must be positive")
+        out.append(f)
+    if not out or len(set(out)) != len(out):
+        raise UserError(f"--grids {text!r}: needs distinct factors")
+    return tuple(out)
+
+
+# ------------------------------------------------------------------ evaluation
+
+
+def grid_label(solver: str, case: Case) -> str:
+    """``41x41`` for a grid, ``fem.h=0.125`` (a0) for the FEM (its registry record)."""
+    return solvers.record(solver).label(case)
+
+
+@dataclass
+class Unit:
+    """One bisection: sweep point ``point`` (its label ``point_label``), ``solver``,
+    grid refinement ``factor``; it counts its evaluations, time and the step label."""
+
+    request: Request
+    point: int
+    point_label: str
+    solver: str
+    factor: float
+    evaluations: int = 0
+    wall_s: float = 0.0
+    at_label: str = ""
+    log: Callable[[str], None] | None = None
+
+    def case(self, value: float) -> Case:
+        """The case at ``param`` = ``value`` on this unit's grid (validated)."""
+        r = self.request
+        points = load_case(r.case, quick=r.quick, overrides={**r.overrides, r.param: value})
+        case = points[self.point]
+        if self.factor != 1.0:  # a closed form is sampled on the case grid: refined as one
+            refine = solvers.REGISTRY[self.solver].refine or solvers.refine_grid
+            case = refine(case, self.factor)
+        check_fits(case)
+        (r.limits or Limits()).check(case, self.solver)
+        return case
+
+    def __call__(self, value: float) -> bool:
+        """The event at ``param`` = ``value`` (solves the case)."""
+        r = self.request
+        case = self.case(value)
+        t0 = time.perf_counter()
+        try:
+            result = solvers.resolve(self.solver)(case, progress=False, on_output=None)
+        except CaseError as exc:  # e.g. the contact reaches the grid edge: a user error
+            where = f" [{self.point_label}]" if self.point_label else ""
+            raise CaseError(f"solver {self.solver}{where} at {r.param} = {value:g} on "
+                            f"{grid_label(self.solver, case)}: {exc}") from None
+        step, self.at_label = events.select_step(result, case, r.options.at)
+        verdict = event(r.event).test(step, r.options)
+        dt = time.perf_counter() - t0
+        self.evaluations, self.wall_s = self.evaluations + 1, self.wall_s + dt
+        if self.log is not None:
+            ev = event(r.event)
+            self.log(f"{self.solver} {grid_label(self.solver, case)}: {r.param} = {value:.6g}"
+                     f" -> {ev.true_means if verdict else ev.false_means} ({dt:.1f} s)")
+        return verdict
+
+    def row(self, **values: Any) -> dict[str, Any]:
+        """A ``thresholds.csv`` row of this unit (``values`` fill the rest)."""
+        r = self.request
+        case = self.case(r.lo)
+        rec = solvers.REGISTRY[self.solver]
+        cell = solvers.grid_cell(case) if rec.closed_form else rec.cell_size(case)
+        row = dict.fromkeys(COLUMNS, math.nan)
+        row.update(case=case.name, point=self.point_label, event=r.event, param=r.param,
+                   at=self.at_label, quick=r.quick, solver=self.solver,
+                   grid=grid_label(self.solver, case), refine=self.factor, cell_size=cell,
+                   resolution=r.resolution, range_lo=r.lo, range_hi=r.hi,
+                   evaluations=self.evaluations, wall_s=self.wall_s)
+        row.update(values)
+        return row
+
+
+def _ends(unit: Unit) -> tuple[bool, bool] | dict[str, Any]:
+    """The event at both ends of the bracket, or the row saying why there is none."""
+    r = unit.request
+    for value in (r.lo, r.hi):
+        reason = solvers.unsupported(unit.solver, unit.case(value))
+        if reason is not None:
+            return unit.row(status=f"unsupported: {reason}")
+        reason = None if r.explicit else solvers.not_by_default(unit.solver, unit.case(value))
+        if reason is not None:
+            return unit.row(status=f"not by default: {reason}")
+    try:
+        return unit(r.lo), unit(r.hi)
+    except EventUndefined as exc:
+        return unit.row(status=f"n/a: {exc}")
+    except RuntimeError as exc:
+        return unit.row(status=f"failed: {exc}")
+
+
+def _exact_row(unit: Unit) -> dict[str, Any] | None:
+    """The exact threshold's row for ``unit``'s point, if the closed form has one."""
+    r = unit.request
+    case = load_case(r.case, quick=r.quick, overrides={**r.overrides, r.param: r.lo})
+    t0 = time.perf_counter()
+    try:
+        exact = events.exact_threshold(r.event, r.param, case[unit.point], r.options)
+    except ValueError as exc:  # the closed form's root is outside its search bracket
+        exact = f"the closed form's root was not found ({exc})"
+    if not isinstance(exact, Exact):
+        return None
+    half = exact.resolution / 2
+    row = unit.row(threshold=exact.value, uncertainty=half, resolution=exact.resolution,
+                   lo=exact.value - half, hi=exact.value + half, evaluations=0,
+                   status=f"exact: {exact.reference}", wall_s=time.perf_counter() - t0)
+    row.update(grid="exact", refine=math.nan, cell_size=math.nan)
+    return row
+
+
+def make_units(request: Request, log: Callable[[str], None] | None = None) -> list[Unit]:
+    """Every (point, solver, grid) of ``request``; UserError if the event does not apply."""
+    for value in (request.hi, request.lo):
+        try:
+            points = load_case(request.case, quick=request.quick,
+                               overrides={**request.overrides, request.param: value})
+        except CaseError as exc:
+            raise CaseError(f"--param {request.param} = {value:g}: {exc}") from None
+    reason = event(request.event).applies(points[0])
+    if reason is not None:
+        raise UserError(reason)
+    key = (read_toml(case_path(request.case)).get("sweep") or {}).get("key")
+    labels = [c.param if key and key != request.param else "" for c in points]
+    order = [s for s in solvers.names() if s in request.solvers]
+    return [Unit(request, i, labels[i], s, f, log=log)
+            for i in range(len(points)) for s in order for f in request.grids]
+
+
+def _no_change(request: Request, stuck: list[tuple[Unit, bool]]) -> UserError:
+    ev = event(request.event)
+    which = "; ".join(f"{u.solver} {grid_label(u.solver, u.case(request.lo))}"
+                      + (f" [{u.point_label}]" if u.point_label else "")
+                      + f": {ev.true_means if v else ev.false_means} at both ends"
+                      for u, v in stuck)
+    return UserError(f"--param {request.param}: event {request.event} does not change over "
+                     f"[{request.lo:g}, {request.hi:g}] ({which}); widen --range")
+
+
+def _bisect_unit(unit: Unit, ends: tuple[bool, bool]) -> dict[str, Any]:
+    r, ev = unit.request, event(unit.request.event)
+    try:
+        b = bisect(unit, r.lo, r.hi, r.resolution, at_lo=ends[0], at_hi=ends[1])
+    except RuntimeError as exc:
+        return unit.row(status=f"failed: {exc}")
+    except EventUndefined as exc:
+        return unit.row(status=f"n/a: {exc}")
+    below, above = (ev.true_means, ev.false_means) if b.at_lo else \
+        (ev.false_means, ev.true_means)
+    return unit.row(threshold=b.value, uncertainty=b.uncertainty, lo=b.lo, hi=b.hi,
+                    status=f"bisected: {below} at lower {r.param}, {above} at higher")
+
+
+def run(request: Request, log: Callable[[str], None] | None = None) -> list[dict[str, Any]]:
+    """The threshold rows of ``request`` (module doc): UserError if the event does not
+    change over the bracket for some unit; a unit whose solver fails has a ``failed``
+    row."""
+    ends: list[tuple[Unit, tuple[bool, bool] | dict[str, Any]]] = []
+    skip: set[tuple[int, str]] = set()  # a solver that cannot say: one row, not one a grid
+    for u in make_units(request, log):
+        if (u.point, u.solver) not in skip:
+            ends.append((u, _ends(u)))
+            if isinstance(ends[-1][1], dict) and not ends[-1][1]["status"].startswith("fail"):
+                skip.add((u.point, u.solver))
+    stuck = [(u, e[0]) for u, e in ends if isinstance(e, tuple) and e[0] == e[1]]
+    if stuck:
+        raise _no_change(request, stuck)
+    rows = []
+    for u, e in ends:
+        if solvers.record(u.solver).closed_form and u.factor == request.grids[0]:
+            exact = _exact_row(u)
+            if exact is not None:
+                rows.append(exact)
+        rows.append(e if isinstance(e, dict) else _bisect_unit(u, e))
+    return add_grid_shift(rows)
+
+
+def add_grid_shift(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """``grid_shift``: each row's threshold minus that of the same (point, solver) on the
+    case grid (factor 1, else the first grid listed); the exact row gets the step label."""
+    ref: dict[tuple[str, str], float] = {}
+    for row in (r for r in rows if r["grid"] != "exact"):
+        if (row["point"], row["solver"]) not in ref or row["refine"] == 1.0:
+            ref[(row["point"], row["solver"])] = row["threshold"]
+    for row in rows:
+        if row["grid"] != "exact":
+            row["grid_shift"] = row["threshold"] - ref[(row["point"], row["solver"])]
+        elif not row["at"]:
+            row["at"] = next((o["at"] for o in rows if o["at"]), "")
+    return rows
+
+
+# ------------------------------------------------------------------ output
+
+
+def _num(v: Any, fmt: str) -> str:
+    return "" if not isinstance(v, int | float) or not math.isfinite(v) else format(v, fmt)
+
+
+def format_table(request: Request, rows: list[dict[str, Any]]) -> str:
+    """The rows as a text table, with one grid-dependence line per (point, solver)."""
+    r = request
+    head = (f"threshold of {r.event} in {r.param} for {r.case}"
+            + (" (quick)" if r.quick else "") + f": bracket [{r.lo:g}, {r.hi:g}], "
+            f"resolution {r.resolution:g}" + (f", at {rows[0]['at']}" if rows else ""))
+    lines = [head, f"{'solver':9s} {'point':10s} {'grid':14s} {'cell [mm]':>9s} "
+             f"{'threshold':>10s} {'±':>9s} {'evals':>5s} {'grid shift':>10s} "
+             f"{'wall [s]':>8s}  status"]
+    for row in rows:
+        status = row["status"].split(":")[0] if row["status"].startswith(
+            ("bisected", "exact")) else row["status"]
+        lines.append(
+            f"{row['solver']:9s} {row['point'] or '-':10s} {row['grid']:14s} "
+            f"{_num(row['cell_size'], '9.4g'):>9s} {_num(row['threshold'], '10.5g'):>10s} "
+            f"{_num(row['uncertainty'], '9.2g'):>9s} {row['evaluations']:>5} "
+            f"{_num(row['grid_shift'], '+10.3g'):>10s} {_num(row['wall_s'], '8.1f'):>8s}  "
+            f"{status}")
+    lines += grid_dependence(rows)
+    return "\n".join(lines)
+
+
+def grid_dependence(rows: list[dict[str, Any]]) -> list[str]:
+    """One line per (point, solver) with thresholds on several grids."""
+    groups: dict[tuple[str, str], list[dict[str, Any]]] = {}
+    for row in rows:
+        if row["grid"] != "exact" and math.isfinite(row["threshold"]):
+            groups.setdefault((row["point"], row["solver"]), []).append(row)
+    return [f"grid dependence {solver}" + (f" [{point}]" if point else "") + ": "
+            + ", ".join(f"{g['threshold']:.5g} on {g['grid']}" for g in group)
+            + f"; spread {max(t) - min(t):.3g} (resolution {group[0]['resolution']:g})"
+            for (point, solver), group in groups.items()
+            if len(t := [g["threshold"] for g in group]) > 1]
+
+
+def stderr_log(message: str) -> None:
+    print(f"threshold: {message}", file=sys.stderr, flush=True)
+
+
+@contextmanager
+def _locked(path: Path) -> Iterator[None]:
+    """Hold an exclusive OS lock on ``path`` (waiting for another threshold run)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    with open(path, "a+") as fh:
+        fcntl.flock(fh, fcntl.LOCK_EX)
+        yield
+
+
+def existing(out: Path) -> pd.DataFrame | None:
+    """The rows of ``out/thresholds.csv`` (None if absent); UserError if it is damaged."""
+    from reports.store.layout import THRESHOLDS
+    from reports.store.readers import DamagedResult, read_result, read_thresholds
+
+    if not (Path(out) / THRESHOLDS).exists():
+        return None
+    try:
+        return read_result(Path(out) / THRESHOLDS, read_thresholds)
+    except DamagedResult as exc:
+        raise UserError(f"{exc}; move it away to start a new table") from None
+
+
+def write_rows(out: Path, rows: list[dict[str, Any]]) -> Path:
+    """Merge ``rows`` into ``out/thresholds.csv`` (rows of the same case, point, event,
+    param, step, tier, solver and grid replaced) and write it atomically."""
+    from reports.store.layout import THRESHOLDS
+    from reports.store.readers import MERGE_KEYS
+    from reports.store.write import write_csv
+
+    new = pd.DataFrame.from_records(rows, columns=COLUMNS)
+    with _locked(Path(out) / f".{THRESHOLDS}.lock"):
+        old = existing(out)
+        if old is not None:
+            key = set(new[MERGE_KEYS].astype(str).agg("|".join, axis=1))
+            kept = old[~old[MERGE_KEYS].astype(str).agg("|".join, axis=1).isin(key)]
+            new = pd.concat([kept, new], ignore_index=True) if len(kept) else new
+        write_csv(Path(out) / THRESHOLDS, new)
+    return Path(out) / THRESHOLDS

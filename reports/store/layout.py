@@ -1,0 +1,107 @@
+"""Where a run puts its files: the output layout of ``DIR/<case>/``.
+
+::
+
+    DIR/<case>/manifest.json                      written last: the run is complete
+    DIR/<case>/summary.csv                        one row per (solver, param, step)
+    DIR/<case>/metrics.csv                        one row per compared quantity
+    DIR/<case>/events.csv                         fretting: one row per regime event
+                                                  (reports.store.event_table)
+    DIR/<case>/convergence.csv                    run --convergence: one row per (solver,
+                                                  param, step, gated quantity) of the
+                                                  three-grid studies (reports.studies.gridstudy)
+    DIR/<case>/jump_study.csv                     run --jump-study: one row per (solver,
+                                                  param, output cycle, quantity) of the
+                                                  cycle-jump studies (reports.studies.jumpstudy)
+    DIR/<case>/fields/<solver>/<param>/step_NNNN.npz   surface fields and planes
+    DIR/<case>/fields/<solver>/<param>/step_NNNN.vtu   FEM meshes (ParaView)
+    DIR/<case>/fields/<solver>/<param>/step_NNNN_surface.vtu   grid steps: surface cells
+    DIR/<case>/fields/<solver>/<param>/step_NNNN_planes.vtu    grid steps: xz/yz planes
+    DIR/<case>/fields/<solver>/<param>/<table>.csv     tables (e.g. fretting loops)
+    DIR/.<case>.partial/                          staging area of a run in progress
+    DIR/.<case>.lock                              locked by the run of <case> in progress
+
+``<param>`` is the sweep label (``mu=0.25``) or ``base`` for a case without a sweep.
+The fields are those of the run's own grid; the coarser grids of a grid study write no
+fields, only ``convergence.csv`` (and their records in the manifest's ``units``).
+A run writes into the staging directory and renames it to ``DIR/<case>`` only after the
+manifest is written, so a case directory is either complete or absent.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+MANIFEST = "manifest.json"
+SUMMARY = "summary.csv"
+METRICS = "metrics.csv"
+CONVERGENCE = "convergence.csv"
+JUMP_STUDY = "jump_study.csv"
+EVENTS = "events.csv"
+FIELDS = "fields"
+PARTIAL_SUFFIX = ".partial"
+FAILED = "failed.json"
+SWEEP_PLOT = "sweep.png"
+SWEEP_CHECK = "sweep_check.json"
+#: beside the case directories: ``contact-vv threshold``'s table and the report
+THRESHOLDS = "thresholds.csv"
+REPORT = "index.html"
+
+#: names a case directory may hold; a directory with none of them is not a result
+OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, JUMP_STUDY, EVENTS, FIELDS,
+                       SWEEP_PLOT, SWEEP_CHECK})
+
+_UNSAFE = re.compile(r"[^A-Za-z0-9._=+-]")
+
+
+def safe_name(text: str) -> str:
+    """A file-name-safe form of a case name or sweep label: one plain path component
+    (never empty, ``.`` or ``..``)."""
+    name = _UNSAFE.sub("_", text)
+    return name if name.strip(".") else "_" * max(len(name), 1)
+
+
+def param_dir(param: str) -> str:
+    """Directory name of one sweep point: the label, or ``base`` without a sweep."""
+    return safe_name(param) if param else "base"
+
+
+def case_dir(out: Path, case: str) -> Path:
+    return Path(out) / safe_name(case)
+
+
+def staging_dir(out: Path, case: str) -> Path:
+    return Path(out) / f".{safe_name(case)}{PARTIAL_SUFFIX}"
+
+
+def lock_file(out: Path, case: str) -> Path:
+    """The file whose OS lock a run of ``case`` holds (reports.store.staging.case_lock)."""
+    return Path(out) / f".{safe_name(case)}.lock"
+
+
+def unit_dir(root: Path, solver: str, param: str) -> Path:
+    """Field directory of one (solver, sweep point) under a case or staging directory."""
+    return Path(root) / FIELDS / safe_name(solver) / param_dir(param)
+
+
+def step_file(root: Path, solver: str, param: str, step: int, ext: str = "npz") -> Path:
+    return unit_dir(root, solver, param) / f"step_{int(step):04d}.{ext}"
+
+
+def looks_like_result(path: Path) -> bool:
+    """Whether a directory holds anything a run writes (so it may be a damaged result)."""
+    return Path(path).is_dir() and any((Path(path) / n).exists() for n in OWN_NAMES)
+
+
+def only_own_files(path: Path) -> bool:
+    """Whether every entry of a directory is something a run writes (safe to replace)."""
+    return all(p.name in OWN_NAMES or p.name.startswith(".") for p in Path(path).iterdir())
+
+
+def partial_case_name(path: Path) -> str | None:
+    """The case name of a staging directory, or None if ``path`` is not one."""
+    name = Path(path).name
+    if name.startswith(".") and name.endswith(PARTIAL_SUFFIX):
+        return name[1 : -len(PARTIAL_SUFFIX)]
+    return None

@@ -1,0 +1,81 @@
+"""The directories of a case run: a per-case lock held for the whole run, the staging
+directory the run writes into, and removal by renaming away first.
+
+The lock (an OS file lock on ``DIR/.<case>.lock``, :func:`case_lock`) is held from before
+the staging directory is claimed until after it is renamed onto ``DIR/<case>``, so two
+runs of one case never share or remove each other's directories: the second one is
+refused with the first one's pid.  Holding the lock, a staging directory found on disk
+can only be an interrupted run's: it is discarded with a note (runs do not resume), but
+only if it holds nothing a run does not write.
+"""
+
+from __future__ import annotations
+
+import fcntl
+import os
+import shutil
+import sys
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from reports.registry.errors import UserError
+from reports.store import layout
+
+#: what a staging directory may hold besides the result files (layout.OWN_NAMES)
+_STAGING_EXTRA = frozenset({layout.FAILED, ".pid"})
+
+
+@contextmanager
+def case_lock(out: Path, name: str) -> Iterator[Path]:
+    """Hold the lock of case ``name`` in ``out`` (UserError if another run holds it)."""
+    path = layout.lock_file(out, name)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fh = open(path, "a+")
+    try:
+        try:
+            fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            fh.seek(0)
+            holder = fh.read().strip() or "?"
+            raise UserError(f"another contact-vv run (pid {holder}) is writing case {name} in "
+                            f"{out}; wait for it to end or choose another --out") from None
+        fh.seek(0)
+        fh.truncate()
+        fh.write(str(os.getpid()))
+        fh.flush()
+        yield path
+    finally:
+        fh.close()  # closing releases the lock
+
+
+def _ours(path: Path) -> bool:
+    """Whether a staging directory holds only what a run writes into one."""
+    return all(p.name in layout.OWN_NAMES or p.name in _STAGING_EXTRA
+               or p.name.startswith(".") for p in path.iterdir())
+
+
+def claim_staging(out: Path, name: str) -> Path:
+    """Create a fresh staging directory for ``name`` (the caller holds the case's lock)."""
+    staging = layout.staging_dir(out, name)
+    if staging.exists():
+        if not (staging.is_dir() and _ours(staging)):
+            raise UserError(f"{staging} exists and is not a contact-vv staging directory; "
+                            "refusing to remove it (choose another --out)")
+        kept = sum(1 for _ in staging.rglob("step_*.npz"))
+        print(f"contact-vv: {staging} holds an interrupted run of {name} ({kept} output "
+              "step file(s) kept); runs do not resume: discarding it and restarting "
+              f"{name} from the beginning", file=sys.stderr)
+        remove_dir(staging)
+    staging.mkdir(parents=True)
+    return staging
+
+
+def remove_dir(path: Path) -> None:
+    """Remove a directory by first renaming it away (the removal itself is not atomic)."""
+    if path.exists():
+        trash = path.with_name(f".{path.name}.old-{os.getpid()}")
+        if trash.exists():
+            shutil.rmtree(trash)
+        os.replace(path, trash)
+        shutil.rmtree(trash, ignore_errors=True)

@@ -1,0 +1,49 @@
+"""The study tables of a results directory: ``convergence.csv`` (grid studies,
+``run --convergence``) and ``jump_study.csv`` (cycle-jump studies, ``run --jump-study``),
+their columns, the statuses a row may hold, and their readers."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+
+from reports.store.readers import Malformed, read_csv
+
+#: statuses of a three-level study (:func:`reports.studies.convergence.classify`)
+CONVERGED, OSCILLATING, NOT_CONVERGED, EXACT = "converged", "oscillating", "not converged", \
+    "exact"
+STATUSES = (CONVERGED, OSCILLATING, NOT_CONVERGED, EXACT)
+#: the columns of ``convergence.csv``; the first 14 required
+CONVERGENCE_COLUMNS = ["solver", "param", "step", "quantity", "h1", "h2", "h3", "f1", "f2",
+                       "f3", "order", "f_extrapolated", "gci_fine", "status", "gci_coarse",
+                       "asymptotic", "note"]
+#: the columns of ``jump_study.csv``: sizes are the jumps J/4, J/2, J
+JUMP_COLUMNS = ["solver", "param", "cycle", "step", "quantity", "h1", "h2", "h3", "f1", "f2",
+                "f3", "change_halved", "order", "f_extrapolated", "gci_fine", "status",
+                "gci_coarse", "asymptotic", "note", "cell_size"]
+
+
+def read_study(path: Path, columns: list[str], required: list[str]) -> pd.DataFrame:
+    """A study table with ``columns`` (``required`` among them): text and numbers as a
+    run writes them, a known ``status``; ``Malformed`` otherwise."""
+    text = ("solver", "param", "quantity", "status", "note")
+    frame = read_csv(path, required=required, text=text,
+                     numeric=[c for c in columns if c not in (*text, "step")],
+                     integer=["step"])
+    bad = ~frame["status"].isin(STATUSES)
+    if bad.any():
+        i = int(bad.to_numpy().nonzero()[0][0])
+        raise Malformed(f"column 'status' holds {frame['status'].iloc[i][:40]!r} (data row "
+                        f"{i + 1}), not one of {', '.join(STATUSES)}")
+    return frame
+
+
+def read_convergence(path: Path) -> pd.DataFrame:
+    """``convergence.csv`` (a parser for :func:`reports.store.readers.read_result`)."""
+    return read_study(path, CONVERGENCE_COLUMNS, CONVERGENCE_COLUMNS[:14])
+
+
+def read_jump_study(path: Path) -> pd.DataFrame:
+    """``jump_study.csv`` (a parser for :func:`reports.store.readers.read_result`)."""
+    return read_study(path, JUMP_COLUMNS, JUMP_COLUMNS)

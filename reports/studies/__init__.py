@@ -1,0 +1,1 @@
+"""Grid and jump studies as tables and flags, numerical uncertainty, events."""

@@ -1,0 +1,142 @@
+"""The layers of ``reports/`` (reports/README.md): each sub-package imports only those
+its row allows, nothing imports the CLI, only the registry knows the solver packages,
+and no import circle exists between the project's modules."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGES = ("halfspace", "fem_reference", "analytic", "cases", "reports")
+SOLVERS = ("halfspace", "fem_reference", "analytic")
+
+#: sub-package of reports -> the sub-packages it may import (besides itself)
+ALLOWED = {
+    "registry": set(),
+    "store": {"registry"},
+    "compare": {"registry"},
+    "studies": {"registry", "store", "compare"},
+    "run": {"registry", "store", "compare", "studies"},
+    "render": {"registry", "store", "compare", "studies"},
+}
+
+
+def modules() -> dict[str, Path]:
+    """Dotted name -> file of every module of the five packages."""
+    out = {}
+    for pkg in PACKAGES:
+        for path in sorted((ROOT / pkg).rglob("*.py")):
+            parts = path.relative_to(ROOT).with_suffix("").parts
+            if parts[-1] == "__init__":
+                parts = parts[:-1]
+            out[".".join(parts)] = path
+    return out
+
+
+def imports(name: str, path: Path) -> set[str]:
+    """The project modules ``name`` imports (absolute names; a package's ``from pkg import
+    mod`` resolved to the module)."""
+    known = modules()
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            targets = [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom):
+            base = node.module or ""
+            if node.level:
+                up = package.split(".")[: len(package.split(".")) - node.level + 1]
+                base = ".".join(up + ([base] if base else []))
+            targets = [f"{base}.{a.name}" if f"{base}.{a.name}" in known else base
+                       for a in node.names]
+        else:
+            continue
+        for t in targets:
+            while t and t not in known:
+                t = t.rpartition(".")[0]
+            if t and t.split(".")[0] in PACKAGES and t != name:
+                found.add(t)
+    return found
+
+
+GRAPH = {name: imports(name, path) for name, path in modules().items()}
+
+
+def room(name: str) -> str | None:
+    """The sub-package of reports a module belongs to (None: cli, package files)."""
+    parts = name.split(".")
+    return parts[1] if parts[0] == "reports" and len(parts) > 2 else None
+
+
+def test_every_module_of_reports_lives_in_a_sub_package():
+    loose = [n for n in GRAPH if n.startswith("reports.") and room(n) is None
+             and n not in ("reports.cli", "reports.__main__")
+             and n.rpartition(".")[2] not in ALLOWED]
+    assert loose == []
+
+
+@pytest.mark.parametrize("name", sorted(n for n in GRAPH if room(n)))
+def test_layers_of_reports(name):
+    here = room(name)
+    bad = sorted(t for t in GRAPH[name] if t.startswith("reports")
+                 and room(t) != here and room(t) not in ALLOWED[here])
+    assert bad == [], f"{name} ({here}/) may import only {sorted(ALLOWED[here])}"
+
+
+def test_nothing_imports_the_cli():
+    assert sorted(n for n, deps in GRAPH.items()
+                  if "reports.cli" in deps and n != "reports.__main__") == []
+
+
+def test_only_the_registry_knows_the_solver_packages():
+    bad = sorted(f"{n} -> {t}" for n, deps in GRAPH.items() for t in deps
+                 if room(n) not in (None, "registry") and n.startswith("reports")
+                 and t.split(".")[0] in SOLVERS)
+    assert bad == []
+
+
+def test_solver_packages_are_independent():
+    """halfspace and fem_reference share no code (their agreement is the evidence), and no
+    solver imports reports."""
+    bad = sorted(f"{n} -> {t}" for n, deps in GRAPH.items() for t in deps
+                 if (n.startswith("halfspace") and t.startswith("fem_reference"))
+                 or (n.startswith("fem_reference") and t.startswith("halfspace"))
+                 or (n.split(".")[0] in SOLVERS + ("cases",) and t.startswith("reports")))
+    assert bad == []
+
+
+def test_no_import_circle():
+    """Depth-first search for a back edge over the project's module graph."""
+    state: dict[str, int] = {}
+    cycle: list[str] = []
+
+    def visit(n: str, path: list[str]) -> bool:
+        state[n] = 1
+        for t in sorted(GRAPH.get(n, ())):
+            if state.get(t) == 1:
+                cycle.extend(path[path.index(t):] + [n, t] if t in path else [n, t])
+                return True
+            if t not in state and visit(t, path + [n]):
+                return True
+        state[n] = 2
+        return False
+
+    for n in sorted(GRAPH):
+        if n not in state and visit(n, []):
+            break
+    assert cycle == []
+
+
+def test_reading_results_loads_no_running_machinery():
+    """``report`` and ``gate`` (render/) reach nothing of run/, not even through another
+    module."""
+    seen, todo = set(), [n for n in GRAPH if room(n) == "render"]
+    while todo:
+        n = todo.pop()
+        if n not in seen:
+            seen.add(n)
+            todo += GRAPH.get(n, ())
+    assert sorted(n for n in seen if room(n) == "run") == []
