@@ -4,8 +4,9 @@ the analytic solver (:mod:`analytic.solver`).
 
 Conventions (cases/model.py): the surface fields ``p_n, p_x, p_y`` are the tractions on
 body a (p_n > 0 compressive), sampled at the cell centres (x[i], y[j]).  Subsurface planes
-are reported in ``case.stress.body`` with z >= 0 the depth into it: 'xz' at y = stress.y0
-with s = grid.x, 'yz' at x = stress.x0 with s = grid.y, z = stress.z.
+are reported in ``case.stress.body`` with z >= 0 the depth into it: 'xz' at y = y0
+with s = grid.x, 'yz' at x = x0 with s = grid.y, z = stress.z, (x0, y0) the planes'
+centre ``case.plane_centre``.
 
 - Body a: global z points into it, so its frame (x, y, z) is the half-space frame of the
   point-force kernels; it carries (p_x, p_y, p_n).
@@ -165,8 +166,9 @@ def plane_stresses(case: Case, h: hz.Hertz, terms, X, Y, Z) -> dict[str, np.ndar
 def planes(case: Case, h: hz.Hertz, terms) -> dict[str, Plane]:
     g, st = case.grid, case.stress
     z = st.z
+    x0, y0 = case.plane_centre
     out = {}
-    for name, s, fixed in (("xz", g.x, st.y0), ("yz", g.y, st.x0)):
+    for name, s, fixed in (("xz", g.x, y0), ("yz", g.y, x0)):
         S, Z = np.meshgrid(s, z, indexing="ij")
         F = np.full_like(S, fixed)
         X, Y = (S, F) if name == "xz" else (F, S)
@@ -176,7 +178,7 @@ def planes(case: Case, h: hz.Hertz, terms) -> dict[str, Plane]:
 
 
 def vm_scalars(case: Case, planes: dict[str, Plane]) -> dict[str, float]:
-    vm, x, y, z = vm_max_location(planes, case.stress.x0, case.stress.y0)
+    vm, x, y, z = vm_max_location(planes, *case.plane_centre)
     return dict(vm_max=vm, vm_max_x=x, vm_max_y=y, vm_max_z=z)
 
 

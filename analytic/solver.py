@@ -4,6 +4,9 @@ Covered (:func:`has_solution`):
 
 - ``static``, no tangential load: Hertz (any elastic pair when frictionless; with
   friction only for identical materials, which keep the tangential tractions zero).
+- ``static``, dissimilar materials with friction and no tangential load: Spence's
+  frictional compression (:mod:`analytic.spence`): Hertz's pressure and the slip
+  annulus's traction, whose sign is the coupling's.
 - ``static``, ``load.sliding``: full sliding (identical materials, or frictionless).  The
   traction on body a is p · t with the constant vector t = -M² d_e / ‖d‖*_μ of
   formulation Eq. 13 (d the sliding direction of a relative to b): -μ p d for isotropic
@@ -20,7 +23,8 @@ Covered (:func:`has_solution`):
   Hertz pressure and the Cattaneo traction at the cycle's end (:mod:`analytic.fretting`).
 
 Not covered (:class:`~cases.model.CaseError` from :func:`solve`): fretting beyond the
-first cycle or with orthotropic friction, dissimilar materials with friction,
+first cycle or with orthotropic friction, dissimilar materials with friction under a
+tangential load,
 Cattaneo–Mindlin with orthotropic friction.
 
 Conventions and the fields on the grid: :mod:`analytic.fields`.
@@ -28,17 +32,24 @@ Conventions and the fields on the grid: :mod:`analytic.fields`.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from collections.abc import Callable
 
+import numpy as np
+
 from cases.model import Case, CaseError
 from cases.result import (
+    OPEN,
+    SLIP,
+    STICK,
     RunResult,
     StepResult,
 )
 
-from . import fields, fretting_case, wear
+from . import fields, fretting_case, spence, wear
+from . import hertz as hz
 from .fields import sliding_traction_vector
 
 SOLVER_NAME = "analytic"
@@ -57,6 +68,8 @@ def _no_solution_reason(case: Case) -> str | None:
     if case.kind == "fretting":
         return fretting_case.no_solution_reason(case)
     if not case.identical_materials and frictional:
+        if case.kind == "static" and case.load.tangential_mode == "none" and f.isotropic:
+            return None  # Spence's frictional compression (analytic.spence)
         return "dissimilar materials with friction (normal-tangential coupling, K != 0)"
     if case.kind == "sliding_wear":
         return None
@@ -82,6 +95,8 @@ def has_solution(case: Case) -> bool:
 
 def static_step(case: Case) -> StepResult:
     """The one output step of a static case (step 0)."""
+    if not case.identical_materials and case.friction.mu1 > 0:
+        return compression_step(case)
     t0 = time.perf_counter()
     h = fields.normal(case)
     fields.check_grid(case, h.a, "Hertz")
@@ -104,6 +119,35 @@ def static_step(case: Case) -> StepResult:
                       planes=planes)
 
 
+def compression_step(case: Case) -> StepResult:
+    """Normal loading of a dissimilar pair with friction (:mod:`analytic.spence`): Hertz's
+    pressure, the slip annulus's traction μ p r̂ (its sign from Dundurs' β), NaN in the
+    stick disc; no stresses (the stick disc's traction has no closed form here) and no
+    stick area (the coupled stick disc is smaller than (SP1)'s, which bounds it)."""
+    t0 = time.perf_counter()
+    h = fields.normal(case)
+    fields.check_grid(case, h.a, "Hertz")
+    beta, mu = spence.dundurs_beta(case), case.friction.mu1
+    c = spence.stick_ratio(beta, mu) * h.a
+    g = case.grid
+    X, Y = np.meshgrid(g.x, g.y, indexing="ij")
+    r = np.hypot(X, Y)
+    p_n = hz.pressure(r, h.a, h.p0)
+    p_x, p_y = spence.slip_traction(X, Y, p_n, h.a, c, beta, mu)
+    state = np.where(r < h.a, np.where(r <= c, STICK, SLIP), OPEN).astype(np.int8)
+    zero = np.zeros_like(p_n)
+    surface = dict(p_n=p_n, p_x=p_x, p_y=p_y, gap=hz.gap(r, h.a, h.R), wear_a=zero,
+                   wear_b=zero.copy(), state=state)
+    nan = math.nan
+    scalars = dict(
+        step=0, s=nan, cycle=nan, P=h.P, Qx=0.0, Qy=0.0, contact_area=h.area, a_x=h.a,
+        a_y=h.a, p_max=h.p0, w_max=0.0, wear_volume=0.0, vm_max=nan, vm_max_x=nan,
+        vm_max_y=nan, vm_max_z=nan, stick_area=nan, iterations=0, converged=True,
+        approach=h.delta, dundurs_beta=beta, stick_radius_uncoupled=c, p0=h.p0, a0=h.a,
+        wall_s=time.perf_counter() - t0)
+    return StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(), surface=surface)
+
+
 # Argatov's radius, pressure and depth are asymptotic in s: reported from this many
 # transition distances s_c on (measured with the half-space solver on the article's
 # pin: at 10 s_c = 230 mm the gaps are about -1.7% (w_max) and +2.2% (p_max); -13.6%
@@ -115,10 +159,11 @@ def wear_steps(case: Case) -> list[StepResult]:
     """Output steps of a ``sliding_wear`` case: scalars from Argatov / Hegadekatte.
 
     Step numbers and distances follow the incremental runs: s in output_s plus 0 and the
-    total distance, step = round(s / sliding_wear.step).  s = 0 is the exact Hertz state
-    (p_max = p0); for s > 0 p_max is Argatov's steady-state P/(π a²), w_max the
-    Archard-consistent depth √(a⁴ - a0⁴)/(2R) (see :mod:`analytic.wear`), these
-    three only from ``ASYMPTOTIC_FROM`` s_c on (NaN before: no reference), with
+    total distance, step = round(s / sliding_wear.step).  s = 0 is the sliding sphere
+    before any wear (:func:`sliding_start`, fields and stresses); for s > 0 p_max is
+    Argatov's steady-state P/(π a²), w_max the Archard-consistent depth √(a⁴ - a0⁴)/(2R)
+    (see :mod:`analytic.wear`), these three only from ``ASYMPTOTIC_FROM`` s_c on (NaN
+    before: no reference), with
     i_w = i_w,a(θ) + i_w,b(θ) (the gap sees both bodies' wear; the disk's is 0 in case 4).
     """
     t0 = time.perf_counter()
@@ -135,6 +180,11 @@ def wear_steps(case: Case) -> list[StepResult]:
     steps = []
     for n in numbers:
         s = n * sw.step
+        if n == 0:  # before any wear: the sphere sliding on the plane, fields and all
+            start = sliding_start(case)
+            start.scalars.update(i_w=i_w, s_transition=s_c)
+            steps.append(start)
+            continue
         a = float(wear.argatov_radius(s, h.a, i_w, h.P, case.R))
         fields.check_grid(case, a, f"Argatov at s = {s:g} mm")
         p_max = h.p0 if s == 0 else float(wear.argatov_p_max(s, h.a, i_w, h.P, case.R))
@@ -154,6 +204,19 @@ def wear_steps(case: Case) -> list[StepResult]:
         )
         steps.append(StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(), surface={}))
     return steps
+
+
+def sliding_start(case: Case) -> StepResult:
+    """Step 0 of a ``sliding_wear`` case, s = 0: the unworn sphere sliding on the plane
+    along ``load.slide_angle`` — Hertz's pressure and Hamilton's field of the full-sliding
+    traction (orthotropic friction: the one direction of Eq. 13), exact at any μ, β."""
+    sliding = case.with_changes(
+        kind="static", sliding_wear=None,
+        load=dataclasses.replace(case.load, sliding=True))
+    step = static_step(sliding)
+    step.scalars.update(step=0, s=0.0, w_max=0.0, wear_volume=0.0, w_max_hegadekatte=0.0,
+                        w_max_literal=0.0)
+    return step
 
 
 def solve(case: Case, *, progress: bool = False,

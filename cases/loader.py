@@ -33,6 +33,7 @@ BUNDLED = (
     "fretting_orthotropic",
     "dissimilar",
     "fretting_isotropic",
+    "spence",
 )
 def case_path(name_or_path: str | Path) -> Path:
     """Resolve a bundled case name (file stem in ``cases/``) or a path to a TOML file."""

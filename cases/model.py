@@ -241,6 +241,14 @@ class Case:
     source: str = ""  # path of the TOML file
 
     @property
+    def plane_centre(self) -> tuple[float, float]:
+        """(x, y) where every solver's stress planes cross: the cell centre of the case's
+        grid nearest to (``stress.x0``, ``stress.y0``) (the half-space solver evaluates its
+        stresses at cell centres; a plane half a cell off would compare another field)."""
+        i, j = self.grid.nearest_cell(self.stress.x0, self.stress.y0)
+        return float(self.grid.x[i]), float(self.grid.y[j])
+
+    @property
     def identical_materials(self) -> bool:
         return self.a.E == self.b.E and self.a.nu == self.b.nu
 

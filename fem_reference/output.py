@@ -182,11 +182,10 @@ def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tract
     """The summary scalars of a step from its nodal tractions, contact zone and
     stresses (symmetry factors applied)."""
     m = run.model
-    st = m.case.stress
     sym, nodes, ev = m.sym, run.nodes, out.sol.ev
     w = nodes.w
     stick = ev.state == STICK
-    vm, vm_x, vm_y, vm_z = vm_max_location(planes, st.x0, st.y0)
+    vm, vm_x, vm_y, vm_z = vm_max_location(planes, *m.case.plane_centre)
     vm_axis, z_axis = axis_peak(axis["z"], axis["vm"],
                                 AXIS_FIT_WINDOW * max(zone.a_x, zone.a_y, m.h))
     Q = [float(np.sum(w * ev.t[:, c])) for c in (0, 1)]

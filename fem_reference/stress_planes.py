@@ -1,10 +1,10 @@
 """Subsurface stresses of the reported body: the xz and yz planes and the load axis.
 
 Samples the exact P2 element stresses (:func:`fem_reference.stresses.sample_stresses`)
-in the reported frame (x, y, depth z) on the case's planes: ``xz`` at y = ``stress.y0``
-over the grid x, ``yz`` at x = ``stress.x0`` over the grid y, both at the depths
-``stress.z``; and on the load axis (x0, y0) at 8x the plane resolution in depth, whose
-σ_VM maximum :func:`axis_peak` locates.
+in the reported frame (x, y, depth z) on the case's planes: ``xz`` at y = y0 over the
+grid x, ``yz`` at x = x0 over the grid y ((x0, y0) = ``case.plane_centre``), both at the
+depths ``stress.z``; and on the load axis (x0, y0) at 8x the plane resolution in depth,
+whose σ_VM maximum :func:`axis_peak` locates.
 """
 
 from __future__ import annotations
@@ -52,19 +52,20 @@ def stress_planes(model: FemModel, locator: PointLocator, u: BodyDisplacement, n
     displacement ``u`` and (ν, E)."""
     case = model.case
     st = case.stress
+    x0, y0 = case.plane_centre
     z = st.z
     planes = {}
     for name, s in (("xz", case.grid.x), ("yz", case.grid.y)):
         S, Z = np.meshgrid(s, z, indexing="ij")
         if name == "xz":
-            xyz = np.column_stack([S.ravel(), np.full(S.size, st.y0), Z.ravel()])
+            xyz = np.column_stack([S.ravel(), np.full(S.size, y0), Z.ravel()])
         else:
-            xyz = np.column_stack([np.full(S.size, st.x0), S.ravel(), Z.ravel()])
+            xyz = np.column_stack([np.full(S.size, x0), S.ravel(), Z.ravel()])
         sig = stress_at(model, locator, u, nu, E, xyz)
         planes[name] = Plane(s=s.copy(), z=z.copy(),
                              fields={k: v.reshape(S.shape) for k, v in sig.items()})
     zf = np.linspace(0.0, st.depth, AXIS_REFINEMENT * (st.nz - 1) + 1)
-    xyz = np.column_stack([np.full(zf.size, st.x0), np.full(zf.size, st.y0), zf])
+    xyz = np.column_stack([np.full(zf.size, x0), np.full(zf.size, y0), zf])
     axis = {"z": zf, **stress_at(model, locator, u, nu, E, xyz)}
     return planes, axis
 

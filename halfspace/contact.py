@@ -158,7 +158,8 @@ class ContactSolver:
             return self._tangential(zeta, u_tn, g_prev, p_n, start, tol)
 
         return shift_for_resultant(solve_at, Q, np.asarray(shift0, float), p0, J=J,
-                                   max_step=max_step, scale=scale, dA=self.dA, tol=self.tol)
+                                   max_step=max_step, scale=scale, P=P, dA=self.dA,
+                                   tol=self.tol)
 
     # ------------------------------------------------------------------ a step
     def solve(

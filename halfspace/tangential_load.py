@@ -2,21 +2,31 @@
 tractions carry a given resultant Q (Eq. 37).
 
 The resultant is a monotone function of the shift; it is found by a quasi-Newton
-(Broyden) iteration on F(g_t,o) = sum(p_t) dA - Q.  Each evaluation of F is a tangential
-solve (Eq. 16).  Far from the answer those solves need no more accuracy than F has
-(inexact Newton): they stop at a residual of INNER_TOL_FACTOR x the relative mismatch, at
-most INNER_TOL_MAX.  Once the mismatch is met, or an inexact step fails to reduce it,
-every later solve is exact, and exact means FINAL_TOL_FACTOR x the tolerance: the
-resultant sums the tractions' error over the whole contact, so the tractions must be a
-little tighter than the resultant's tolerance.
+(Broyden) iteration on F(g_t,o) = sum(p_t) dA - Q, to |F| <= 10 tol scale (scale: |Q|,
+or a small fraction of mu P when Q nearly vanishes).  Each evaluation of F is a
+tangential solve (Eq. 16), whose residual is relative to ||p_n||: an error r in it moves
+the resultant by about r P (the traction error summed over the contact, P = sum(p_n) dA),
+not by r |Q|, and |Q| may be a small fraction of P (small mu, or the first increments of a
+load path).  Every solve tolerance below is therefore the wanted accuracy of F divided by
+P.  Far from the answer the solves need no more accuracy than F has (inexact Newton):
+they stop at a residual of INNER_TOL_FACTOR x |F| / P, at most INNER_TOL_MAX.  Once the
+mismatch is met, or an inexact step fails to reduce it, every later solve is exact, and
+exact means FINAL_TOL_FACTOR x tol x min(1, scale / P) (never looser than
+FINAL_TOL_FACTOR x tol): the resultant's error is then a small fraction of its tolerance,
+and a Newton step of the size of that tolerance still moves the tractions.
 
 A step is kept only if it reduces |F| by the fraction SUFFICIENT_DECREASE at least (an
 inexact solve started from the previous tractions may meet its tolerance at once and
 return F unchanged; a secant update from such a step would flatten J along the step).
-A step that fails, solved exactly, is undone: J is refreshed by finite differences at
-the last kept shift (the secant can be nearly singular under strong orthotropy), and if
-J was fresh already the step length is halved (a full step can overshoot into gross slip,
-where F is flat and no Jacobian points back).
+A step that fails, solved exactly, is undone.  If its solve returned its start unchanged
+(the start already met the tolerance at the new shift: F is at the noise level of the
+exact solves and cannot resolve the step), the exact tolerance is tightened tenfold, down
+to TOL_FLOOR (round-off of the residual), and F re-solved at the kept shift.  Otherwise J
+is refreshed by finite differences at the last kept shift (the secant can be nearly
+singular under strong orthotropy), and if J was fresh already the step length is halved
+(a full step can overshoot into gross slip, where F is flat and no Jacobian points back).
+The mismatch is always measured on the tractions returned, so the loop either meets the
+tolerance or raises ContactNotConverged after MAX_NEWTON steps.
 """
 
 from __future__ import annotations
@@ -31,6 +41,8 @@ from .tangential import TangentialSolution
 INNER_TOL_FACTOR = 1e-2
 INNER_TOL_MAX = 1e-4
 FINAL_TOL_FACTOR = 0.1
+TOL_FLOOR = 1e-15
+TIGHTEN = 0.1
 MAX_NEWTON = 100
 SUFFICIENT_DECREASE = 1e-4
 
@@ -39,13 +51,17 @@ Solve = Callable[[np.ndarray, tuple[np.ndarray, np.ndarray] | None, float], Tang
 
 def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
                         p0: tuple[np.ndarray, np.ndarray] | None, *, J: np.ndarray,
-                        max_step: float, scale: float, dA: float,
+                        max_step: float, scale: float, P: float, dA: float,
                         tol: float) -> tuple[TangentialSolution, np.ndarray, int]:
     """(tractions, shift, tangential iterations) with ``|sum(p_t) dA - Q| <= 10 tol scale``.
 
     ``solve(zeta, start, tol)`` gives the tractions of shift ``zeta`` from the tractions
-    ``start``; ``J`` is the initial dQ/dg_t,o, ``max_step`` caps a Newton step."""
-    exact_tol = FINAL_TOL_FACTOR * tol
+    ``start``; ``J`` is the initial dQ/dg_t,o, ``max_step`` caps a Newton step, ``P`` is
+    the normal resultant (converts a solve's residual into the resultant's error)."""
+    tol_Q = 10.0 * tol * scale
+    lowest = min(TOL_FLOOR, FINAL_TOL_FACTOR * tol)
+    load = P if P > 0 else np.inf  # no contact: no tractions, any tolerance is met
+    exact_tol = max(lowest, FINAL_TOL_FACTOR * tol * min(1.0, scale / load))
 
     def evaluate(z, start, t):
         sol = solve(z, start, t)
@@ -55,7 +71,7 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
     iters, exact = sol.iterations, INNER_TOL_MAX <= exact_tol
     final, fresh, step = exact, False, max_step
     for _ in range(MAX_NEWTON):
-        if np.hypot(*F) <= tol * scale * 10:
+        if np.hypot(*F) <= tol_Q:
             if exact:
                 return sol, zeta, iters
             sol, F = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
@@ -65,7 +81,7 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
         if np.hypot(*dz) > step:  # the secant flattens near gross slip
             dz *= step / np.hypot(*dz)
         t = exact_tol if final else max(exact_tol, min(
-            INNER_TOL_MAX, INNER_TOL_FACTOR * np.hypot(*F) / scale))
+            INNER_TOL_MAX, INNER_TOL_FACTOR * np.hypot(*F) / load))
         trial, F_new = evaluate(zeta + dz, (sol.p_x, sol.p_y), t)
         iters, trial_exact = iters + trial.iterations, t <= exact_tol
         bound = (1.0 - SUFFICIENT_DECREASE) * np.hypot(*F)
@@ -81,13 +97,20 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
             sol, F = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
             iters, exact, final = iters + sol.iterations, True, True
             continue
+        if trial.iterations <= 1 and exact_tol > lowest:
+            # the solve returned its start: the step is below what the tolerance resolves
+            exact_tol = max(lowest, TIGHTEN * exact_tol)
+            sol, F = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
+            iters += sol.iterations
+            continue
         if fresh:
             step = 0.5 * min(step, np.hypot(*dz))
         else:
             J, probe_iters = _fd_jacobian(evaluate, zeta, F, sol, 1e-3 * max_step, exact_tol)
             iters, fresh = iters + probe_iters, True
     raise ContactNotConverged(
-        f"tangential load control did not converge: |Q - Q_target| = {np.hypot(*F):.3e} N")
+        f"tangential load control did not converge: |Q - Q_target| = {np.hypot(*F):.3e} N "
+        f"> {tol_Q:.3e} N (tangential solves to residual {exact_tol:.1e})")
 
 
 def _fd_jacobian(evaluate, zeta: np.ndarray, F: np.ndarray, sol: TangentialSolution,

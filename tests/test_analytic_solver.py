@@ -193,7 +193,14 @@ def test_sliding_wear_scalars():
     a = steps[640]["a_x"]
     assert steps[640]["p_max"] == pytest.approx(P / (math.pi * a * a), rel=1e-14)
     assert steps[640]["w_max_hegadekatte"] == pytest.approx(steps[640]["w_max"], rel=2e-5)
-    assert res.steps[0].surface == {}
+    # s = 0 is the sphere sliding on the plane, before any wear: Hertz's pressure and the
+    # full-sliding traction (Eq. 13), with stresses; the worn steps carry scalars only
+    first = res.steps[0]
+    assert first.surface["p_n"].max() == pytest.approx(steps[0]["p_max"], rel=0.05)
+    t = sliding_traction_vector(case)
+    assert (steps[0]["Qx"], steps[0]["Qy"]) == pytest.approx((P * t[0], P * t[1]), rel=1e-12)
+    assert set(first.planes) == {"xz", "yz"}
+    assert all(st.surface == {} and st.planes == {} for st in res.steps[1:])
 
 
 def test_orthotropic_wear_and_sliding_traction():

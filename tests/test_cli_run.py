@@ -178,13 +178,13 @@ def test_sources_edited_during_a_run_are_flagged(tmp_path, fake, monkeypatch, ca
 
 
 def test_pair_specific_tolerance_key(tmp_path, fake, capsys):
-    text = HERTZ + '[tolerances]\n"ic-analytic.p_n_l2" = 0.01\n'
+    text = HERTZ + '[tolerances]\n"ic-analytic.p_n_max" = 0.01\n'
     out = tmp_path / "res"
     assert run(str(write_case(tmp_path, text)), "--out", str(out)) == 0
     capsys.readouterr()
     assert main(["gate", "--out", str(out)]) == 1
     fails = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("FAIL")]
-    assert [("p_n l2" in f and "ic-analytic.p_n_l2" in f) for f in fails] == [True]
+    assert [("p_n max" in f and "ic-analytic.p_n_max" in f) for f in fails] == [True]
 
 
 def test_non_converged_solver_exits_1_and_leaves_nothing_complete(tmp_path, monkeypatch,

@@ -59,7 +59,7 @@ def test_the_held_load_runs_and_the_estimate_holds_in_gross_slip(tmp_path):
                  "--out", str(out)]) == 0
     summary = pd.read_csv(out / "fretting_orthotropic_load" / "summary.csv")
     cases = {c.param: c for c in load_case(EXAMPLE, quick=True)}
-    last = summary[summary["cycle"] == 2000].set_index("param")
+    last = summary[(summary["cycle"] == 2000) & (summary["solver"] == "ic")].set_index("param")
     assert last["P"].to_numpy() == pytest.approx(778.41, rel=1e-9)
     est = {p: c.worn_radius_estimate for p, c in cases.items()}
     dx = cases["beta=0"].grid.dx

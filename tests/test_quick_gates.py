@@ -24,7 +24,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from cases.loader import BUNDLED
+from cases.loader import BUNDLED, load_case
 from reports.cli import main
 from reports.store import layout
 
@@ -71,3 +71,58 @@ def test_no_drift_from_the_baselines(quick, capsys):
     code = main(["gate", "--out", str(quick), "--baseline", str(BASELINES)])
     out = capsys.readouterr().out
     assert code == 0, "\n".join(ln for ln in out.splitlines() if ln.startswith("DRIFT"))
+
+
+def verdicts(out: Path, name: str, declare: dict | None = None) -> pd.DataFrame:
+    """The metric rows of a case decided again from its stored fields, with the case's
+    points changed by ``declare`` (a ``[not_converged]`` table and ``stress.z_below``)."""
+    import dataclasses
+
+    from cases.result import RunResult
+    from reports.compare.metrics import point_rows
+    from reports.compare.verdict import decide
+    from reports.store.results import scan
+
+    found = next(c for c in scan(out).complete if c.name == name)
+    rows = []
+    for case in load_case(name, quick=True):
+        if declare is not None:
+            case = case.with_changes(
+                not_converged=declare["not_converged"],
+                stress=dataclasses.replace(case.stress, z_below=declare["z_below"]))
+        results = {}
+        for s in found.manifest["solvers"]:
+            steps = found.steps(s, case.param)
+            if steps:
+                tables = {k: {c: t[c].to_numpy() for c in t.columns}
+                          for k, t in found.tables(s, case.param).items()}
+                results[s] = RunResult(case=name, solver=s, param=case.param,
+                                       steps=[steps[k] for k in sorted(steps)], tables=tables)
+        rows.append(point_rows(case, results))
+    return decide(pd.concat(rows, ignore_index=True))
+
+
+@pytest.mark.parametrize("name", ["pin_on_disk", "pin_on_disk_orthotropic"])
+def test_the_declarations_the_worn_pins_had_change_no_verdict(quick, name):
+    """The worn pins declared their surface σ_VM maximum not converged and set
+    ``stress.z_below = 0.1`` mm for its companion (main at 57bfec4).  Without them the
+    comparisons decide it from the fields — on every worn step with friction the maximum
+    is shown (``surface``) and its companion ``vm_max_below`` gated — and given back, the
+    declarations change no verdict: every gated row passes either way."""
+    plain = verdicts(quick, name)
+    declared = verdicts(quick, name, {"not_converged": {"vm_max": "declared"},
+                                      "z_below": 0.1})
+    for m in (plain, declared):
+        gated = m[m["status"] == "gated"]
+        assert len(gated) > 100 and gated["passed"].all(), gated[~gated["passed"]]
+    worn = plain[(plain["step"] > 0) & (plain["pair"] == "ic-fem")]
+    surface = 0
+    for (_, _), rows in worn.groupby(["param", "step"]):
+        got = dict(zip(zip(rows["quantity"], rows["metric"], strict=True), rows["status"],
+                       strict=True))
+        if ("vm_max", "surface") in got:  # shown; its companion below gated
+            surface += 1
+            assert got[("vm_max_below", "rel")] == "gated"
+        else:
+            assert got[("vm_max", "rel")] == "gated"
+    assert surface >= 3  # the worn frictional steps, at least

@@ -79,8 +79,9 @@ def test_metrics_coloured_and_failure_named(report):
     _, text = report
     static = section(text, "static")
     # vm_xz l2 is 0.015 against the deliberately tight 0.01: a failing (red) row
-    assert re.search(r'<tr class="fail"><td class="l">ic-analytic</td><td class="l">vm_xz'
-                     r'</td><td class="l">l2</td><td class="">0\.015</td>', static)
+    assert re.search(r'<tr class="fail"><td class="l">ic-analytic</td><td class="l">closed '
+                     r'form</td><td class="l">vm_xz</td><td class="l">l2</td><td class="">'
+                     r'0\.015</td>', static)
     assert '<tr class="pass">' in static
     # each row says which kind of tolerance it used, with the budget beside U
     assert ">tolerance_kind</th>" in static and ">uncertainty</th>" in static

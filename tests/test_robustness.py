@@ -148,3 +148,67 @@ def test_no_overlap_under_displacement_control_carries_no_load(method):
                            method=method, tol=1e-10)
     sol = solver.solve(h + 1e-6, approach=1e-7)
     assert sol.P == 0.0 and sol.iterations == 0 and not np.any(sol.state.p_n)
+
+
+# Valid partial-slip cases that stopped with "tangential load control did not converge"
+# 1e-10 to 2e-9 N off: identical materials, small mu and |Q| a small fraction of P (the
+# first increments of the load path), where the exact tangential solves' error in the
+# resultant (about residual x P) exceeded its tolerance (10 tol |Q|).
+#   E [MPa], nu, R [mm], Lx [mm], nx, mu, P [N], Qx [N], Qy [N]
+STALLED_LOAD_CONTROL = [
+    (189567.81094182865, 0.22847165718382786, 6.70628761240356, 0.19633714897699686, 16,
+     0.1374427286500368, 2.4778180228617432, -0.0707689482746538, 0.06163694441177654),
+    (295584.5983838319, 0.2811385697302032, 21.003627349194026, 0.5324921707762824, 34,
+     0.11275214904512271, 21.796321848384565, -1.4788758076601158, -0.40020888096684215),
+    (341108.8686782053, 0.4128606065628496, 78.3351675591632, 1.5177847337359407, 17,
+     0.11100017500767854, 216.47234260576548, -5.295959536460895, 3.262552926154815),
+]
+
+
+@pytest.mark.parametrize("params", STALLED_LOAD_CONTROL)
+def test_load_control_meets_the_resultant_when_q_is_small_against_p(params):
+    """The static load path (normal load, then Q in five increments, as
+    halfspace.solver.static_step) converges at every increment with the resultant within
+    its tolerance 10 tol |Q| (tangential_load.py), tractions inside the friction disc."""
+    import tomllib
+
+    from cases.build import build
+    from halfspace.problem import contact_solver, profile
+    from halfspace.solver import TANGENTIAL_INCREMENTS
+
+    E, nu, R, L, n, mu, P, Qx, Qy = params
+    mat = f"E = {E!r}\nnu = {nu!r}\n"
+    text = (f'kind = "static"\n[materials.a]\n{mat}[materials.b]\n{mat}[geometry]\nR = {R!r}\n'
+            f"[grid]\nLx = {L!r}\nnx = {n}\n[friction]\nmu = {mu!r}\n"
+            f"[load]\nP = {P!r}\nQx = {Qx!r}\nQy = {Qy!r}\n")
+    case = build(tomllib.loads(text), name="stalled", source="test", param="")
+    solver, h = contact_solver(case), profile(case)
+    prev = solver.solve(h, P=P, shift=(0.0, 0.0)).state
+    for i in range(1, TANGENTIAL_INCREMENTS + 1):
+        Q = np.array([Qx, Qy]) * i / TANGENTIAL_INCREMENTS
+        sol = solver.solve(h, prev=prev, Q=Q, P=P)
+        prev = sol.state
+        assert np.hypot(sol.Qx - Q[0], sol.Qy - Q[1]) <= 10 * solver.tol * np.hypot(*Q)
+        inside = prev.p_n > 0
+        traction = np.hypot(prev.p_x, prev.p_y)[inside]
+        assert np.all(traction <= mu * prev.p_n[inside] * (1 + 1e-9))
+        assert sol.residual_t < solver.tol
+
+
+@pytest.mark.parametrize("iterations", [1, 50])
+def test_load_control_that_cannot_meet_the_resultant_still_fails(iterations):
+    """Tangential solves whose resultant is noisy beyond the tolerance at any residual
+    (whether they return their start at once or iterate): tightening them is tried, but
+    the mismatch is never taken as met, the loop ends in ContactNotConverged."""
+    from halfspace.tangential import TangentialSolution
+    from halfspace.tangential_load import shift_for_resultant
+
+    rng = np.random.default_rng(0)
+
+    def solve(zeta, start, tol):  # Q = -zeta, 1e-7 N of noise
+        p_x, p_y = -zeta + 1e-7 * rng.standard_normal(2)
+        return TangentialSolution(np.array([p_x]), np.array([p_y]), iterations, tol)
+
+    with pytest.raises(ContactNotConverged, match="tangential load control"):
+        shift_for_resultant(solve, np.array([0.5, 0.0]), np.zeros(2), None, J=-np.eye(2),
+                            max_step=1.0, scale=0.5, P=1.0, dA=1.0, tol=1e-10)

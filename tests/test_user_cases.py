@@ -73,8 +73,12 @@ def _check(metrics: pd.DataFrame, pairs: set[str]) -> None:
     assert set(gated["pair"]) == pairs
     assert (gated["tolerance_kind"] == "budget").all()  # defaults, nothing from a case
     assert gated["passed"].all(), gated[~gated["passed"]]
-    # the ungated rows are the kinks at the stick-slip boundary, nothing else
-    assert set(metrics.loc[metrics["status"] != "gated", "metric"]) <= {"kink"}
+    # the ungated rows are what the comparisons decide by themselves: the maxima over the
+    # bands (stick-slip kink, contact edge) and near the surface, and fields in a zone
+    # narrower than their resolution floor
+    off = metrics[metrics["status"] != "gated"]
+    shown = off["metric"].isin(["kink", "edge", "surface"])
+    assert (shown | off["note"].str.startswith("not resolved")).all(), off[~shown]
 
 
 @pytest.mark.parametrize("name", sorted(CASES))

@@ -12,13 +12,15 @@ solver's contact boundary.  There a cell-average (IC) and a point value (FEM, cl
 forms) of a traction that falls to zero inside the cell differ by a fraction of the
 traction itself, and a worn contact, whose pressure drops almost as a step at the edge
 (Argatov's limit is uniform pressure), makes that fraction O(1) at any grid size; the
-near-edge σ_VM follows the edge traction (its gradient ∝ jump/distance).  The L2 norms,
-the semi-widths and the contact area still measure the edge, except on the planes of a
-case that declares its surface σ_VM maximum not converged (``[not_converged] vm_max``, a
-log-singular edge, docs/formulation.md §2.6): there the plane L2 norms leave out the
-edge band as well, because the singular neighbourhood carries most of the difference
-and no grid settles it (worn pin, quick set-up, μ = 0.5, s = 160 mm: ic 41² against
-ic 161² 0.030 with the band, 0.015 without; the FEM 0.040 and 0.010).
+near-edge σ_VM follows the edge traction (its gradient ∝ jump/distance).  The L2 norms
+of the tractions, the semi-widths and the contact area still measure the edge.  The
+σ_VM planes are compared over the contact's neighbourhood (:func:`neighbourhood`),
+their edge band left out of both norms: at a worn frictional edge the surface stress is
+log-singular (docs/formulation.md §2.6), the neighbourhood of the singularity carries
+most of the difference and no grid settles it (worn pin, quick set-up, μ = 0.5,
+s = 160 mm: ic 41² against ic 161² 0.030 with the band, 0.015 without; the FEM 0.040
+and 0.010).  The σ_VM maximum and its location are compared by
+:mod:`reports.compare.maxima`.
 
 Max norms of the tangential tractions and of the σ_VM planes also leave out the
 *stick band*: the sample points within one cell — the coarser of the two solvers' own
@@ -55,6 +57,7 @@ from reports.compare.cycles import compare_tables, friction_scale
 from reports.compare.sampling import (
     common_axis,
     contact_edges,
+    edge_band,
     interior,
     off_edges,
     sample,
@@ -65,6 +68,7 @@ from reports.compare.sampling import (
 from reports.compare.verdict import EXTRA_COLUMNS, METRICS_COLUMNS, decide
 from reports.registry import solvers
 from reports.registry import tolerances as tol
+from reports.registry.resolution import Resolution, unresolved
 
 _TINY = 1e-12
 #: the metric of the max over the stick band (module doc): written, never gated
@@ -72,11 +76,20 @@ KINK = "kink"
 KINK_NOTE = ("max within one cell of the stick-slip boundary, where the traction has a "
              "sqrt(c - r) kink that points h apart miss by O(sqrt(h/a)): it measures the "
              "node spacing, not the solver; not gated (reports.compare.metrics)")
+#: metrics written beside a gated one but never gated: -> (the gated metric whose
+#: tolerance they are shown against, why they are not gated)
+_SHOWN = {KINK: ("max", KINK_NOTE), maxima.EDGE: ("rel", maxima.EDGE_NOTE),
+          maxima.SURFACE: ("rel", maxima.SURFACE_NOTE)}
 
 
-def pairs(solvers: Sequence[str]) -> list[tuple[str, str]]:
-    """All pairs in the given order; the second solver of a pair is its reference."""
-    return list(itertools.combinations(solvers, 2))
+def pairs(names: Sequence[str]) -> list[tuple[str, str]]:
+    """All pairs in the given order, the second solver of a pair its reference; a
+    metamorphic relation pairs with its base only."""
+    def related(a: str, b: str) -> bool:
+        ra, rb = solvers.record(a).base, solvers.record(b).base
+        return (not ra and not rb) or ra == b or rb == a
+
+    return [(a, b) for a, b in itertools.combinations(names, 2) if related(a, b)]
 
 
 def field_errors(fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
@@ -151,27 +164,34 @@ def _plane_edges(step: StepResult, name: str, s: np.ndarray, x0: float, y0: floa
 
 
 def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
-                  x0: float = 0.0, y0: float = 0.0, singular_edge: bool = False,
-                  cell: float = 0.0) -> list[tuple[str, str, float]]:
+                  x0: float = 0.0, y0: float = 0.0, cell: float = 0.0,
+                  vm_rel: float = 0.02, z_below: float | None = None
+                  ) -> list[tuple[str, str, float]]:
     """Metric rows (quantity, metric, value) of step ``sa`` against reference ``sb``
-    (planes through (x0, y0)).  ``singular_edge``: the surface stress is log-singular at
-    the contact edge (a case that declares ``vm_max`` not converged), so the plane L2
-    norms leave out the edge band too (module doc).  ``cell``: the coarser of the two
+    (planes through (x0, y0)).  ``cell``: the coarser of the two
     solvers' own cell sizes (``SolverRecord.cell_size``, e.g. the FEM's element size),
-    the unit of the ``cells`` metrics where it is coarser than the sample spacing."""
+    the unit of the ``cells`` metrics where it is coarser than the sample spacing.
+    ``vm_rel``: the pair's ``vm_max`` tolerance, which bounds the near-maximum sets of
+    ``vm_max_loc`` (:mod:`reports.compare.maxima`)."""
     hx = max(spacing(sa.x), spacing(sb.x))
     hy = max(spacing(sa.y), spacing(sb.y))
     band = max(hx, hy, cell)  # the stick band's half-width (module doc)
     rows = _surface_rows(sa, sb, a0, p0, band)
-    plane_rows, hz = _plane_rows(sa, sb, p0, x0, y0, hx, hy, singular_edge, band)
-    return rows + plane_rows + _scalar_rows(sa, sb, a0, p0, max(hx, cell), max(hy, cell),
-                                            max(hz, cell) if hz > 0 else 0.0)
+    plane_rows, hz, samples = _plane_rows(sa, sb, p0, x0, y0, hx, hy, band)
+    cells = (max(hx, cell), max(hy, cell), max(hz, cell) if hz > 0 else 0.0)
+    radius = [_scalar(st, k) for st in (sa, sb) for k in ("a_x", "a_y")]
+    a = max((r for r in radius if math.isfinite(r)), default=a0)
+    vm_rows = maxima.rows(samples, rel=vm_rel, cell=cells, a0=a0, a=a, z_below=z_below)
+    return rows + plane_rows + vm_rows + _scalar_rows(sa, sb, a0, p0, *cells,
+                                                      vm_from_scalars=not vm_rows)
 
 
 def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: float
                   ) -> list[tuple[str, str, float]]:
-    """Surface fields on the contact common to both solvers; the tangential tractions'
-    max norms leave out the stick band of half-width ``band`` (module doc)."""
+    """Surface fields: the L2 norms over the contact of either solver, off each one's edge
+    band (a contact one of them lacks is an error, not a smaller support); the max norms
+    over the interior of the common contact, the tangential tractions' also off the stick
+    band of half-width ``band`` (module doc)."""
     if not (sa.surface and sb.surface and "p_n" in sa.surface and "p_n" in sb.surface):
         return []
     xs, ys = common_axis(sa.x, sb.x), common_axis(sa.y, sb.y)
@@ -180,6 +200,9 @@ def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: fl
     pa = sample((sa.x, sa.y), sa.surface["p_n"], (xs, ys))
     pb = sample((sb.x, sb.y), sb.surface["p_n"], (xs, ys))
     contact = (pa > 0) & (pb > 0)
+    # the L2 norms: over either solver's contact (a contact one of them lacks is an error,
+    # not a smaller support), off the edge band of each
+    l2_mask = ((pa > 0) | (pb > 0)) & ~(edge_band(pa > 0) | edge_band(pb > 0))
     fields = {"p_n": (pa, pb)}
     for q in tol.SURFACE_FIELDS[1:]:
         if q in sa.surface and q in sb.surface:
@@ -196,10 +219,10 @@ def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: fl
         tangential = q in ("p_x", "p_y")
         ref = pt_ref if tangential else None
         off = inner & ~kink if tangential else inner
-        err = field_errors(fa, fb, contact, scale, ref, max_mask=off)
+        err = field_errors(fa, fb, l2_mask, scale, ref, max_mask=off)
         if err is not None:
             rows += [(q, m, err[m]) for m in tol.METRICS[q]]
-            rows += _kink_row(q, fa, fb, contact, kink if tangential else None, scale, ref)
+            rows += _kink_row(q, fa, fb, l2_mask, kink if tangential else None, scale, ref)
     return rows
 
 
@@ -220,13 +243,14 @@ def _kink_row(q: str, fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
 
 
 def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
-                hx: float, hy: float, singular_edge: bool = False, band: float = 0.0
-                ) -> tuple[list[tuple[str, str, float]], float]:
-    """Subsurface σ_VM planes; also the larger depth spacing hz of the planes (0 if
-    none).  With ``singular_edge`` both norms leave out the edge band; the max norm
-    leaves out the stick band of half-width ``band`` below the boundary's surface points
-    (module doc)."""
-    rows, hz = [], 0.0
+                hx: float, hy: float, band: float = 0.0
+                ) -> tuple[list[tuple[str, str, float]], float, list[maxima.PlaneSamples]]:
+    """Subsurface σ_VM planes over the contact's neighbourhood, the edge band left out
+    (:func:`neighbourhood`); the max norm also leaves out the stick band of half-width
+    ``band`` below the boundary's surface points (module doc).  Also the larger depth
+    spacing hz of the planes (0 if none) and both solvers' σ_VM at the common points
+    (:mod:`reports.compare.maxima`)."""
+    rows, hz, samples = [], 0.0, []
     for q, name in tol.PLANE_FIELDS.items():
         pa_, pb_ = sa.planes.get(name), sb.planes.get(name)
         if pa_ is None or pb_ is None or "vm" not in pa_.fields or "vm" not in pb_.fields:
@@ -243,24 +267,42 @@ def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
         line = (ss, np.array([y0])) if name == "xz" else (np.array([x0]), ss)
         kinks = np.concatenate([stick_edges(st, ss, line) for st in (sa, sb)])
         kink = off & ~off_edges(ss, zs, kinks, band) if kinks.size else None
-        mask = off if singular_edge else None
+        mask = off & neighbourhood(ss, zs, edges)
         err = field_errors(fa, fb, mask, p0,
-                           max_mask=off if kink is None else off & ~kink)
+                           max_mask=mask if kink is None else mask & ~kink)
         if err is not None:
             rows += [(q, m, err[m]) for m in tol.METRICS[q]]
             rows += _kink_row(q, fa, fb, mask, kink, p0)
-    return rows, hz
+        samples.append(maxima.PlaneSamples(maxima.plane_points(name, ss, zs, x0, y0),
+                                           fa.ravel(), fb.ravel(), off.ravel()))
+    return rows, hz, samples
+
+
+def neighbourhood(s: np.ndarray, z: np.ndarray, edges: np.ndarray) -> np.ndarray:
+    """The plane points (s, z) within one contact half-chord of the contact's chord on the
+    surface line (between its outermost boundary points ``edges``): the region a contact
+    stresses, so that the plane norms do not depend on how far a case's grid and stress
+    planes extend beyond it (all points where the line misses the contact)."""
+    if edges.size < 2:
+        return np.ones((s.size, z.size), dtype=bool)
+    lo, hi = float(edges.min()), float(edges.max())
+    ds = np.maximum(np.maximum(lo - s, s - hi), 0.0)
+    return np.hypot(ds[:, None], z[None, :]) <= 0.5 * (hi - lo) * (1.0 + 1e-9)
 
 
 def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float,
-                 hy: float, hz: float) -> list[tuple[str, str, float]]:
-    """Peak values (relative), semi-widths and equivalent radii (in cells), and the
-    location of the σ_VM maximum (in cells and in a0)."""
+                 hy: float, hz: float, vm_from_scalars: bool = True
+                 ) -> list[tuple[str, str, float]]:
+    """Peak values (relative), semi-widths and equivalent radii (in cells); with
+    ``vm_from_scalars`` (a pair without common σ_VM planes) also the σ_VM maximum and its
+    location (in cells and in a0) from the solvers' own scalars."""
     h = max(hx, hy)
     rows: list[tuple[str, str, float]] = []
     scale_of = {"p_max": p0, "vm_max": p0, "vm_max_below": p0, "w_max": a0,
                 "wear_volume": a0**3}
     for q in tol.REL_SCALARS:
+        if q in ("vm_max", "vm_max_below") and not vm_from_scalars:
+            continue  # from the planes (reports.compare.maxima)
         a, b = _scalar(sa, q), _scalar(sb, q)
         if q == "vm_max":
             a, b = _vm_location(sa)[0], _vm_location(sb)[0]
@@ -284,7 +326,7 @@ def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float
         rb = math.sqrt(max(b, 0.0) / math.pi) if math.isfinite(b) else math.nan
         rows.append((q, "cells", abs(ra - rb) / h))
     la, lb = _vm_location(sa), _vm_location(sb)
-    if all(math.isfinite(v) for v in la + lb):
+    if vm_from_scalars and all(math.isfinite(v) for v in la + lb):
         d = np.subtract(la[1:], lb[1:])
         cells = np.array([hx, hy, hz if hz > 0 else h])
         cells[cells <= 0] = h if h > 0 else 1.0
@@ -301,7 +343,7 @@ def point_rows(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
     output step, with the status and tolerance the comparisons see themselves."""
     a0, p0 = case.hertz_scales
     mu_P = friction_scale(case)
-    x0, y0 = case.stress.x0, case.stress.y0
+    x0, y0 = case.plane_centre
     own = {n: solvers.record(n).cell_size(case) for n in results}
     records = []
     for sa_name, sb_name in pairs(list(results)):
@@ -313,35 +355,46 @@ def point_rows(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
         for n in sorted(set(steps_a) & set(steps_b)):
             sa, sb = steps_a[n], steps_b[n]
             rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=x0, y0=y0,
-                                 singular_edge="vm_max" in case.not_converged, cell=cell)
+                                 cell=cell, z_below=case.stress.z_below,
+                                 vm_rel=tol.tolerance(case, pair, "vm_max", "rel")[0])
             cycle = _scalar(sb, "cycle")
             if math.isfinite(cycle):
                 rows += compare_tables(results[sa_name].tables, results[sb_name].tables,
                                        cycle, mu_P)
-            unsure = ""
-            if any(q == "vm_max_loc" for q, _, _ in rows):
-                unsure = maxima.ambiguity(
-                    {sa_name: sa, sb_name: sb},
-                    {sa_name: _vm_location(sa), sb_name: _vm_location(sb)},
-                    tol.tolerance(case, pair, "vm_max_loc", "a0")[0] * a0,
-                    tol.tolerance(case, pair, "vm_max", "rel")[0], x0, y0)
+            exact = solvers.exact_pair(pair)
+            resolution = None if exact else step_resolution(sa, sb, cell)
             for quantity, metric, value in rows:
-                kink = metric == KINK  # shown beside the max's tolerance, never gated
-                limit, key = tol.tolerance(case, pair, quantity, "max" if kink else metric)
+                shown = None if exact else _SHOWN.get(metric)  # a band's max, never gated
+                limit, key = tol.tolerance(
+                    case, pair, quantity, _SHOWN[metric][0] if metric in _SHOWN else metric)
                 status, note = tol.status(case, quantity)
-                if kink and status == tol.GATED:
-                    status, note = tol.NOT_CONVERGED, KINK_NOTE
-                if quantity == "vm_max_loc" and unsure and status == tol.GATED:
-                    status, note = tol.NOT_CONVERGED, "not determined: " + unsure
+                coarse = unresolved(quantity, metric, resolution)
+                if status == tol.GATED and (shown or coarse):
+                    status, note = tol.NOT_CONVERGED, coarse or shown[1]
                 records.append({
                     "status": status, "note": note,
                     "quantity": quantity, "pair": pair, "metric": metric, "value": value,
                     "tolerance": limit, "case": case.name, "param": case.param, "step": n,
                     "s": _scalar(sb, "s"), "cycle": _scalar(sb, "cycle"),
-                    "tolerance_key": key,
+                    "tolerance_key": key, "oracle": solvers.oracle(pair),
                 })
     frame = pd.DataFrame.from_records(records, columns=METRICS_COLUMNS + EXTRA_COLUMNS)
     return frame
+
+
+def step_resolution(sa: StepResult, sb: StepResult, cell: float) -> Resolution | None:
+    """The cells (the coarser of the sample spacings and ``cell``) across the contact
+    radius and the slip zone of reference ``sb`` (else ``sa``) (:mod:`reports.registry.resolution`);
+    None without a contact area."""
+    h = max(spacing(sa.x), spacing(sa.y), spacing(sb.x), spacing(sb.y), cell)
+    area = next((v for v in (_scalar(sb, "contact_area"), _scalar(sa, "contact_area"))
+                 if math.isfinite(v) and v > 0), math.nan)
+    if not (math.isfinite(area) and h > 0):
+        return None
+    stick = next((v for v in (_scalar(sb, "stick_area"), _scalar(sa, "stick_area"))
+                  if math.isfinite(v)), 0.0)
+    a, c = math.sqrt(area / math.pi), math.sqrt(max(stick, 0.0) / math.pi)
+    return Resolution(contact=a / h, slip=max(a - c, 0.0) / h)
 
 
 def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:

@@ -71,6 +71,13 @@ def interior(contact: np.ndarray) -> np.ndarray:
                                   border_value=0)
 
 
+def edge_band(contact: np.ndarray) -> np.ndarray:
+    """The points within one cell of a contact's boundary, on either side of it."""
+    cross = np.ones((3, 3), dtype=bool)
+    return (ndimage.binary_dilation(contact, structure=cross)
+            & ~ndimage.binary_erosion(contact, structure=cross, border_value=0))
+
+
 def contact_edges(s: np.ndarray, p_n: np.ndarray) -> np.ndarray:
     """Contact boundary points along a line: midpoints between a sample with p_n > 0
     and a neighbour without."""

@@ -29,7 +29,8 @@ from reports.registry import tolerances as tol
 
 #: the contract columns of metrics.csv, then those the comparisons add
 METRICS_COLUMNS = ["quantity", "pair", "metric", "value", "tolerance", "passed"]
-EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key", "status", "note"]
+EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key", "status", "note",
+                 "oracle"]
 
 
 @dataclass(frozen=True)

@@ -98,6 +98,7 @@ from typing import Any
 
 from cases.model import Case, CaseError
 from cases.result import Cost, RunResult
+from reports.registry import relations
 from reports.registry.errors import SolverUnavailable
 
 SolveFn = Callable[..., RunResult]
@@ -134,6 +135,26 @@ def fem_budget(quantity: str, metric: str) -> float:
     if quantity == "p_max":
         return 0.015
     return grid_budget(quantity, metric)
+
+
+#: Argatov's worn-pin pressure P/(π a²) is the asymptotic (uniform-pressure) limit,
+#: reported from 10 transition distances on (analytic.solver.ASYMPTOTIC_FROM), where it
+#: is still 2.5 % below the converged pressure (half-space 81² and 161² agree to 0.4 %):
+#: the closed form's model-form error, on every worn pin
+ARGATOV_P_MAX = 0.025
+
+
+def no_case_term(case: Case, quantity: str, metric: str) -> float:
+    """A solver whose budget does not depend on the kind of case."""
+    return 0.0
+
+
+def closed_form_case_term(case: Case, quantity: str, metric: str) -> float:
+    """What a closed form states beyond its sampling budget for a kind of case: the
+    asymptotic worn-pin pressure (:data:`ARGATOV_P_MAX`)."""
+    if case.kind == "sliding_wear" and (quantity, metric) == ("p_max", "rel"):
+        return ARGATOV_P_MAX
+    return 0.0
 
 
 def closed_form_budget(quantity: str, metric: str) -> float:
@@ -232,6 +253,9 @@ class SolverRecord:
     #: the same case with cells ``factor`` times smaller (coarser below 1), for grid
     #: studies (``run --convergence``); None: the solver has no grid to refine
     refine: Callable[[Case, float], Case] | None = None
+    #: what the budget adds for a kind of case (case, quantity, metric) -> term, e.g. a
+    #: closed form that is an asymptotic limit there
+    case_term: Callable[[Case, str, str], float] = no_case_term
     #: relative error of what the solver models differently from the half-space problem
     #: (quantity, metric) -> term, for uncertainty-based tolerances (reports.studies.uncertainty)
     model_form: Callable[[str, str], float] = no_model_form
@@ -242,6 +266,10 @@ class SolverRecord:
     #: optional: why a run that names no solvers leaves this one out on a case (None: it
     #: runs); the solver still runs when requested with --solver
     default_attr: str = "by_default"
+    #: a metamorphic relation of the solver ``base`` (reports.registry.relations): it runs
+    #: the base on the transformed case, wherever the base runs, and pairs with it only
+    relation: relations.Relation | None = None
+    base: str = ""
 
     def entry(self, attr: str) -> Callable:
         """The callable ``attr`` of the package; SolverUnavailable if it cannot load."""
@@ -267,9 +295,38 @@ REGISTRY: dict[str, SolverRecord] = {
                         refine=refine_fem, model_form=fem_model_form,
                         style={"color": "C1", "ls": "--", "marker": "s", "ms": 3}),
     "analytic": SolverRecord("analytic", "analytic", budget=closed_form_budget,
+                             case_term=closed_form_case_term,
                              cell_size=no_cell, closed_form=True,
                              style={"color": "k", "ls": ":", "marker": None}),
 }
+REGISTRY.update({
+    f"ic+{rel.name}": SolverRecord(
+        f"ic+{rel.name}", "halfspace", budget=relations.budget(rel, grid_budget),
+        style={"color": "C2", "ls": "-", "marker": None, "lw": 0.8}, relation=rel,
+        base="ic") for rel in relations.RELATIONS})
+
+
+#: what the reference of a pair is (metrics.csv's column ``oracle``)
+CLOSED_FORM, OTHER_SOLVER, RELATION = "closed form", "other solver", "metamorphic relation"
+
+
+def oracle(pair: str) -> str:
+    """The kind of reference of pair ``"A-B"``: B a closed form, a metamorphic relation of
+    A, or another solver."""
+    a, _, b = pair.partition("-")
+    rb = record(b)
+    if rb.closed_form:
+        return CLOSED_FORM
+    return RELATION if rb.base == a else OTHER_SOLVER
+
+
+def exact_pair(pair: str) -> bool:
+    """Whether pair ``"A-B"`` is an exact metamorphic relation B of A: one discretisation
+    of one problem, where every difference is a defect (nothing is taken out of the gate
+    for its resolution or its band)."""
+    a, _, b = pair.partition("-")
+    rb = record(b)
+    return rb.base == a and rb.relation is not None and rb.relation.exact
 
 
 def names() -> list[str]:
@@ -288,7 +345,8 @@ def resolve(name: str) -> SolveFn:
     if name not in REGISTRY:
         raise SolverUnavailable(f"unknown solver {name!r} (known: {', '.join(REGISTRY)})")
     rec = REGISTRY[name]
-    return rec.entry(rec.solve_attr)
+    fn = rec.entry(rec.solve_attr)
+    return relations.wrap(rec.relation, fn) if rec.relation is not None else fn
 
 
 def available(name: str) -> tuple[bool, str]:
@@ -309,7 +367,7 @@ def estimate(name: str, case: Case) -> Cost | None:
         fn = rec.entry(rec.estimate_attr)
     except SolverUnavailable:
         return None
-    return fn(case)
+    return fn(case if rec.relation is None else rec.relation.transform(case))
 
 
 def not_by_default(name: str, case: Case) -> str | None:
@@ -327,5 +385,9 @@ def not_by_default(name: str, case: Case) -> str | None:
 def unsupported(name: str, case: Case) -> str | None:
     """Why solver ``name`` does not handle ``case`` (its ``supports``), None if it does."""
     rec = REGISTRY[name]
+    if rec.relation is not None:
+        if (why := relations.applies(case)) is not None:
+            return why
+        case = rec.relation.transform(case)
     reason = rec.entry(rec.supports_attr)(case)
     return None if reason is None else str(reason)

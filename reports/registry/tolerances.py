@@ -7,15 +7,18 @@ quantity          metrics             meaning
 ================  ==================  ===================================================
 p_n, p_x, p_y     l2, max             surface tractions over the contact (where both
 wear_a, wear_b                        solvers have p_n > 0) and wear depths of body a / b
-vm_xz, vm_yz      l2, max             σ_VM on the xz / yz plane through the load centre
-p_max, w_max,     rel                 scalars of ``summary.csv``; ``vm_max_below`` is the
-wear_volume,                          σ_VM maximum over the planes at depth z ≥
-vm_max,                               ``stress.z_below`` (set in the case), the converged
-vm_max_below                          companion of a singular surface maximum
+vm_xz, vm_yz      l2, max             σ_VM on the xz / yz plane through the load centre,
+                                      over the contact's neighbourhood
+p_max, w_max,     rel                 scalars of ``summary.csv``; ``vm_max`` the σ_VM
+wear_volume,                          maximum over the planes off the edge band, and
+vm_max,                               ``vm_max_below`` the one at depth z ≥ z_below, its
+vm_max_below                          companion where ``vm_max`` lies near the surface
+                                      (:mod:`reports.compare.maxima`)
 a_x, a_y          cells               contact semi-widths through the centre
 contact_area,     cells               equivalent radius √(A/π) of the contact / stick zone
 stick_area
-vm_max_loc        cells, a0           distance between the σ_VM maxima
+vm_max_loc        cells, a0           distance from each σ_VM maximum to the other
+                                      solver's near-maximum set
 loop_q            max                 fretting loop Q(δ) of an output cycle (table
                                       ``loops``), max |Q_A − Q_B| / μP over its points
 energy            rel                 energy dissipated in that cycle (table ``cycles``)
@@ -29,10 +32,11 @@ max norms leave out the *edge band*, the sample points within one cell of either
 solver's contact boundary (on the planes: within one cell of the boundary's surface
 points), where a cell average and a point value of a traction that drops to zero inside
 the cell differ by a fraction of the traction itself — O(1) for the step-like pressure
-edge of a worn contact at any grid size (:mod:`reports.compare.metrics`); the L2 norms, the
-semi-widths and the contact area still measure the edge (except the plane L2 norms of a
-case that declares ``vm_max`` not converged, a log-singular edge: they leave out the
-band too); the max norms of ``p_x``, ``p_y``, ``vm_xz`` and ``vm_yz`` also leave out the
+edge of a worn contact at any grid size (:mod:`reports.compare.metrics`); the L2 norms of
+the tractions, the semi-widths and the contact area still measure the edge; the plane
+norms leave the band out and are taken over the points within one contact half-chord of
+the contact (its neighbourhood: the norms do not depend on how far a case's planes
+extend); the max norms of ``p_x``, ``p_y``, ``vm_xz`` and ``vm_yz`` also leave out the
 *stick band*, the points within one cell (the coarser solver's own cell) of either
 solver's stick–slip boundary, where the traction has a √(c − r) kink that no field held
 at points h apart follows (docs/formulation.md §2.7): the max over that band is written
@@ -53,18 +57,17 @@ pair and a dot (``"ic-fem.p_max"``, a quoted TOML key) it applies to that pair o
 Lookup order: pair-specific key in the case, plain key in the case, default of the pair.
 
 Not converged.  A quantity that is not a converged number is compared and shown but not
-gated: its metric rows carry ``status`` "not converged" and a ``note`` saying why.  Two
-sources: the case file's ``[not_converged]`` table (quantity -> the reason, with the
-measured values; for a quantity the code knows to be singular, e.g. the surface σ_VM
-maximum at the step-like edge of a worn frictional pin, docs/formulation.md §2.6), and a
-grid study of the run (``run --convergence``) whose status for the quantity is neither
+gated: its metric rows carry ``status`` "not converged" and a ``note`` saying why.  The
+code decides it from the run, with a converged companion gated in its place: the
+maxima over the stick band (``kink``) and over the edge band (``vm_max`` ``edge``), a
+σ_VM maximum near the surface (``vm_max`` ``surface``, companion ``vm_max_below``,
+:mod:`reports.compare.maxima`), a field that lives in a zone narrower than its
+resolution floor (:mod:`reports.registry.resolution`; companions the stick and contact
+radii), and a grid or jump study of the run whose status for the quantity is neither
 converged nor exact for either solver of the pair (:func:`reports.studies.gridstudy.flags`).
-A third, for ``vm_max_loc`` only: a σ_VM field with a rival maximum, farther than the
-location tolerance from the global one and within the ``vm_max`` tolerance of it, in
-either solver — where the maximum lies is then not determined (:mod:`reports.compare.maxima`).
-A case file may not both declare a quantity not converged and set a tolerance for it, and
-declaring ``vm_max`` needs ``stress.z_below``: its companion ``vm_max_below`` is gated
-instead.
+A case file may still declare a quantity in its ``[not_converged]`` table (quantity ->
+the reason, with the measured values), for what is model form; it may not both declare a
+quantity not converged and set a tolerance for it.
 
 Defaults.  Each solver has an *error budget* per metric: the error it is expected to make
 against the exact solution at the resolution the bundled cases use (quick grids
@@ -118,8 +121,11 @@ def budget(solver: str, quantity: str, metric: str) -> float:
 
 
 def default_tolerance(pair: str, quantity: str, metric: str) -> float:
-    """Default tolerance of a pair ``"A-B"``: the sum of the two solvers' budgets."""
+    """Default tolerance of a pair ``"A-B"``: the sum of the two solvers' budgets; for a
+    metamorphic relation B of A, B's allowance alone (:mod:`reports.registry.relations`)."""
     a, _, b = pair.partition("-")
+    if solvers.record(b).base == a:
+        return budget(b, quantity, metric)
     return budget(a, quantity, metric) + budget(b, quantity, metric)
 
 
@@ -129,7 +135,8 @@ def tolerance(case: Case, pair: str, quantity: str, metric: str) -> tuple[float,
     for candidate in (f"{pair}.{key}", key):
         if candidate in case.tolerances:
             return case.tolerances[candidate], candidate
-    return default_tolerance(pair, quantity, metric), f"default:{key}"
+    terms = sum(solvers.record(s).case_term(case, quantity, metric) for s in pair.split("-"))
+    return default_tolerance(pair, quantity, metric) + terms, f"default:{key}"
 
 
 def check_keys(case: Case, solver_names: list[str]) -> None:
@@ -156,9 +163,6 @@ def check_keys(case: Case, solver_names: list[str]) -> None:
         if quantity not in METRICS:
             raise CaseError(f"not_converged.{quantity}: unknown quantity (known: "
                             f"{', '.join(sorted(METRICS))})")
-    if "vm_max" in case.not_converged and case.stress.z_below is None:
-        raise CaseError("not_converged.vm_max needs its converged companion: set "
-                        "stress.z_below, the depth [mm] below which vm_max_below is gated")
 
 
 #: the ``status`` of a metric row

@@ -22,7 +22,7 @@ from reports.store.results import CaseResults, Scan, not_converged, scan
 from reports.studies.gridstudy import note_lines
 from reports.studies.jumpstudy import note_lines_jump
 
-_SHOW = ["case", "param", "step", "pair", "quantity", "metric", "value", "tolerance",
+_SHOW = ["case", "param", "step", "pair", "oracle", "quantity", "metric", "value", "tolerance",
          "passed", "status", "tolerance_key", "tolerance_kind", "budget", "uncertainty"]
 
 

@@ -84,8 +84,8 @@ def _worst(metrics: pd.DataFrame) -> pd.DataFrame:
     """Per (pair, quantity, metric): the worst value over sweep points and steps."""
     m = metrics.assign(margin=metrics["value"].fillna(math.inf) / metrics["tolerance"])
     idx = m.groupby(["pair", "quantity", "metric"], sort=False)["margin"].idxmax()
-    cols = ["pair", "quantity", "metric", "value", "tolerance", "tolerance_kind", "budget",
-            "uncertainty", "passed", "param", "step"]
+    cols = ["pair", "oracle", "quantity", "metric", "value", "tolerance", "tolerance_kind",
+            "budget", "uncertainty", "passed", "param", "step"]
     worst = m.loc[idx, [c for c in cols if c in m.columns]]
     return worst.rename(columns={"param": "worst at param", "step": "step"})
 
@@ -210,24 +210,29 @@ def _metrics(case: CaseResults) -> list[str]:
         cls = "ok" if n_ok == n_on else "bad"
         parts.append(f'<p class="{cls}">{n_ok} / {n_on} gated metrics within tolerance</p>')
         if n_on:
-            parts.append("<p>Tolerance kinds: <i>budget</i> (the sum of the pair's error "
-                         "budgets), <i>case</i> (a key of the case file), <i>uncertainty</i> "
-                         "(the combined numerical uncertainty of the grid studies, shown "
-                         "beside the budget it replaced).</p>")
-            parts.append(table_html(_worst(m[on]), status="passed", left=3))
+            parts.append("<p>Oracles: the pair's reference is a <i>closed form</i>, an "
+                         "<i>other solver</i> or a <i>metamorphic relation</i> (the same "
+                         "solver on a transformed case, mapped back). Tolerance kinds: "
+                         "<i>budget</i> (the sum of the pair's error budgets; a relation's "
+                         "own allowance), <i>case</i> (a key of the case file), "
+                         "<i>uncertainty</i> (the combined numerical uncertainty of the grid "
+                         "studies, shown beside the budget it replaced).</p>")
+            parts.append(table_html(_worst(m[on]), status="passed", left=4))
         if n_on < len(m):
             parts.append(
                 f'<p class="bad">Not converged, so not gated ({len(m) - n_on} rows): the '
-                "largest value of each, and why (declared in the case file with its "
-                "measurements, or from the grid study below with its three values).</p>")
+                "largest value of each, and why (a band's maximum, a maximum near the "
+                "surface, a zone narrower than the resolution floor, a grid or jump study "
+                "with its three values, or declared in the case file).</p>")
             off = ungated(m)[["pair", "quantity", "metric", "value", "rows", "param", "step",
                               "note"]].rename(columns={"param": "worst at param",
                                                        "note": "why"})
             parts.append(table_html(off, left=3, row_class=lambda _: "ng"))
-        cols = ["param", "step", "pair", "quantity", "metric", "value", "tolerance", "passed",
-                "status", "tolerance_key", "tolerance_kind", "budget", "uncertainty"]
+        cols = ["param", "step", "pair", "oracle", "quantity", "metric", "value", "tolerance",
+                "passed", "status", "note", "tolerance_key", "tolerance_kind", "budget",
+                "uncertainty"]
         parts.append("<details><summary>All metrics</summary><div class='scroll'>"
-                     + table_html(m[[c for c in cols if c in m.columns]], left=5,
+                     + table_html(m[[c for c in cols if c in m.columns]], left=6,
                                   row_class=_metric_row_class) + "</div></details>")
     parts.append("</div>")
     return parts

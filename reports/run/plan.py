@@ -136,7 +136,7 @@ def select_solvers(requested: list[str] | None) -> tuple[list[str], dict[str, st
             raise UserError(f"unknown solver(s) {', '.join(unknown)} (known: {', '.join(known)})")
         for s in requested:
             solvers.resolve(s)  # raises SolverUnavailable with the reason
-        return [s for s in known if s in requested], {}
+        return [s for s in known if s in requested or solvers.record(s).base in requested], {}
     usable, skipped = [], {}
     for s in known:
         ok, reason = solvers.available(s)

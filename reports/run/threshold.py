@@ -68,7 +68,8 @@ class Request:
     hi: float
     resolution: float
     grids: tuple[float, ...] = DEFAULT_GRIDS
-    solvers: tuple[str, ...] = field(default_factory=lambda: tuple(solvers.names()))
+    solvers: tuple[str, ...] = field(default_factory=lambda: tuple(
+        s for s in solvers.names() if not solvers.record(s).base))
     quick: bool = False
     overrides: dict[str, Any] = field(default_factory=dict)
     options: EventOptions = EventOptions()
@@ -246,7 +247,8 @@ def make_units(request: Request, log: Callable[[str], None] | None = None) -> li
         raise UserError(reason)
     key = (read_toml(case_path(request.case)).get("sweep") or {}).get("key")
     labels = [c.param if key and key != request.param else "" for c in points]
-    order = [s for s in solvers.names() if s in request.solvers]
+    order = [s for s in solvers.names()  # a metamorphic relation has no threshold of its own
+             if s in request.solvers and not solvers.record(s).base]
     return [Unit(request, i, labels[i], s, f, log=log)
             for i in range(len(points)) for s in order for f in request.grids]
 

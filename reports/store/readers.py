@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 
 from cases.result import SUMMARY_COLUMNS, StepResult, load_step
+from reports.registry import solvers
 from reports.registry.errors import IncompleteRun
 from reports.registry.tolerances import (
     GATED,
@@ -229,6 +230,8 @@ def read_metrics(path: Path) -> pd.DataFrame:
                         f"{i + 1}), not {GATED!r} or {NOT_CONVERGED!r}")
     frame["status"] = status
     frame["note"] = frame["note"].fillna("") if "note" in frame.columns else ""
+    if "oracle" not in frame.columns:  # a file an older run wrote: from its pairs
+        frame["oracle"] = [solvers.oracle(str(p)) for p in frame["pair"]]
     frame = with_tolerance_columns(frame)
     bad = ~frame["tolerance_kind"].isin(KINDS)
     if bad.any():

@@ -86,10 +86,10 @@ def write_unit(root: Path, result: RunResult, *, solver: str, param: str, cell_s
 
     Steps with surface fields on a regular grid are also written for ParaView
     (:mod:`reports.store.vtk`); their planes cross at the steps' ``x0, y0`` scalars, else at
-    ``case.stress.x0, stress.y0`` (0, 0 without ``case``)."""
+    ``case.plane_centre`` (0, 0 without ``case``)."""
     rows = result.summary_rows()
     numbers = [row["step"] for row in rows]
-    x0, y0 = (case.stress.x0, case.stress.y0) if case is not None else (0.0, 0.0)
+    x0, y0 = case.plane_centre if case is not None else (0.0, 0.0)
     folder = layout.unit_dir(root, solver, param)
     for k, (n, step) in enumerate(zip(numbers, result.steps, strict=True)):
         if k >= written:

@@ -52,6 +52,8 @@ def not_studied(solver: str, case: Case) -> str | None:
         return f"a {case.kind} case has no cycle jump"
     if solvers.record(solver).closed_form:
         return "a closed form has no cycle jump"
+    if solvers.record(solver).base:
+        return "a metamorphic relation is compared with its base, not studied"
     if case.fretting.jump <= 1.0:
         return f"fretting.jump = {case.fretting.jump:g}: every cycle is simulated"
     return None

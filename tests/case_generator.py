@@ -1,0 +1,104 @@
+"""Valid cases a user could write, over the closed forms' domains, as Hypothesis strategies.
+
+Each draw is the text of a case file (so it goes through the loader's validation like a
+user's) with only physics, a grid and the stress planes: no ``[tolerances]``, no
+``[not_converged]``, no ``stress.z_below``, no ``[fem]``.  The ranges (also in
+``benchmarks/README.md``, "False alarms"):
+
+- kinds: Hertz (identical materials, frictionless or with friction and no tangential
+  load), Hertz of a dissimilar frictionless pair, Cattaneo–Mindlin partial slip under an
+  oblique tangential load, full sliding in any direction with isotropic or orthotropic
+  friction, the worn pin (Argatov's asymptotic solution) with and without friction, and
+  the first fretting cycle (Mindlin–Deresiewicz) under a held approach;
+- R 5–200 mm, P 1–300 N (log-uniform), E 70–400 GPa, ν 0–0.45, μ 0.05–0.8 (sliding) or
+  0.1–0.8, Q/(μP) 0.1–0.9, fretting amplitude 0.2–3 δ*, worn contact radius 1.5–3 a0;
+- the grid: 3.5–10 cells per contact radius (the worn radius for a pin), its half-width
+  1.3–2.2 contact radii, at most 81 cells a side (odd or even counts); the stress planes
+  1.5 contact radii deep with 11–31 layers.
+"""
+
+from __future__ import annotations
+
+import math
+
+from hypothesis import strategies as st
+
+KINDS = ("hertz", "dissimilar", "partial_slip", "sliding", "pin", "fretting")
+
+
+def _log_uniform(lo: float, hi: float) -> st.SearchStrategy[float]:
+    return st.floats(math.log(lo), math.log(hi)).map(math.exp)
+
+
+def hertz_radius(R: float, P: float, a: tuple[float, float], b: tuple[float, float]
+                 ) -> float:
+    """Hertz's contact radius (3PR / 4E*)^(1/3) of materials a, b = (E, ν)."""
+    e_star = 1.0 / ((1 - a[1] ** 2) / a[0] + (1 - b[1] ** 2) / b[0])
+    return (3.0 * P * R / (4.0 * e_star)) ** (1.0 / 3.0)
+
+
+@st.composite
+def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
+    """The text of a valid case file of one of ``kinds`` (module doc)."""
+    kind = draw(st.sampled_from(kinds))
+    R = draw(_log_uniform(5.0, 200.0))
+    P = draw(_log_uniform(1.0, 300.0))
+    mat_a = (draw(st.floats(70e3, 400e3)), draw(st.floats(0.0, 0.45)))
+    mat_b = mat_a
+    if kind == "dissimilar":
+        mat_b = (draw(st.floats(70e3, 400e3)), draw(st.floats(0.0, 0.45)))
+    a0 = hertz_radius(R, P, mat_a, mat_b)
+    body_a = body_b = ""
+    friction, load, extra = "", f"P = {P!r}\n", ""
+    top = 'kind = "static"\n'
+    reach = a0
+    if kind == "hertz" and draw(st.booleans()):
+        friction = f"[friction]\nmu = {draw(st.floats(0.05, 0.8))!r}\n"
+    elif kind == "partial_slip":
+        mu, q = draw(st.floats(0.1, 0.8)), draw(st.floats(0.1, 0.9))
+        angle = draw(st.floats(0.0, 2 * math.pi))
+        friction = f"[friction]\nmu = {mu!r}\n"
+        load += (f"Qx = {q * mu * P * math.cos(angle)!r}\n"
+                 f"Qy = {q * mu * P * math.sin(angle)!r}\n")
+    elif kind == "sliding":
+        if draw(st.booleans()):
+            friction = f"[friction]\nmu = {draw(st.floats(0.05, 0.8))!r}\n"
+        else:
+            friction = (f"[friction]\nmu1 = {draw(st.floats(0.05, 0.8))!r}\n"
+                        f"mu2 = {draw(st.floats(0.05, 0.8))!r}\n"
+                        f"beta = {draw(st.floats(-180.0, 180.0))!r}\n")
+        load += f"sliding = true\nslide_angle = {draw(st.floats(-180.0, 180.0))!r}\n"
+    elif kind == "pin":
+        top = 'kind = "sliding_wear"\n'
+        if draw(st.booleans()):
+            friction = f"[friction]\nmu = {draw(st.floats(0.05, 0.8))!r}\n"
+        reach = draw(st.floats(1.5, 3.0)) * a0  # the worn radius at the end
+        distance = 100.0
+        # Archard with the pin sliding through: a^4 = a0^4 + 4 i P s R / π
+        i_w = (reach**4 - a0**4) * math.pi / (4.0 * P * R * distance)
+        body_a = f"i1 = {i_w!r}\n"
+        n_steps = draw(st.integers(20, 40))
+        load += f"slide_angle = {draw(st.floats(-180.0, 180.0))!r}\n"
+        extra = (f"[sliding_wear]\nstep = {distance / n_steps!r}\ndistance = {distance!r}\n"
+                 f"output_s = [{distance / 2!r}]\n")
+    elif kind == "fretting":
+        top = 'kind = "fretting"\n'
+        mu = draw(st.floats(0.1, 0.8))
+        friction = f"[friction]\nmu = {mu!r}\n"
+        approach = a0**2 / R
+        load = f"approach = {approach!r}\n"
+        G = mat_a[0] / (2 * (1 + mat_a[1]))
+        delta_star = 3 * mu * P / (16 * a0) * 2 * (2 - mat_a[1]) / G  # Mindlin, both bodies
+        i_w = draw(_log_uniform(1e-10, 1e-8))
+        body_a = body_b = f"i1 = {i_w!r}\n"
+        extra = (f"[fretting]\namplitude = {draw(st.floats(0.2, 3.0)) * delta_star!r}\n"
+                 f"steps_per_cycle = {draw(st.sampled_from([8, 12, 20]))}\ncycles = 1\n"
+                 f"output_cycles = [1]\n[solver]\ntol = 1e-8\n")
+    cells = draw(st.floats(3.5, 10.0))  # cells per contact radius
+    L = 2.0 * reach * draw(st.floats(1.3, 2.2))
+    n = max(min(round(L / (a0 / cells)), 81), 9)
+    nz = draw(st.integers(11, 31))
+    return (top + f"[materials.a]\nE = {mat_a[0]!r}\nnu = {mat_a[1]!r}\n{body_a}"
+            f"[materials.b]\nE = {mat_b[0]!r}\nnu = {mat_b[1]!r}\n{body_b}"
+            f"[geometry]\nR = {R!r}\n[grid]\nLx = {L!r}\nnx = {n}\n{friction}"
+            f"[load]\n{load}{extra}[stress]\ndepth = {1.5 * reach!r}\nnz = {nz}\n")
