@@ -63,8 +63,11 @@ def mirrored(case: Case) -> Case:
     load = dataclasses.replace(
         ld, slide_angle=-ld.slide_angle, Qy=None if ld.Qy is None else -ld.Qy,
         shift_y=None if ld.shift_y is None else -ld.shift_y)
+    # the planes of the mirrored case cross at the mirror of the case's own centre (on an
+    # even grid the cell centre nearest to -y0 need not mirror the one nearest to y0)
+    x0, y0 = case.plane_centre
     return case.with_changes(load=load, friction=dataclasses.replace(f, beta=-f.beta),
-                             stress=dataclasses.replace(st, y0=-st.y0))
+                             stress=dataclasses.replace(st, x0=x0, y0=-y0))
 
 
 def turned(case: Case, phi: float = TURN) -> Case:

@@ -9,7 +9,6 @@ unknown case or solver, bad flag, missing results directory), printed as
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 import time
 from collections.abc import Sequence
@@ -196,11 +195,7 @@ def _report_runs(runs, out: Path) -> int:
 def _limits(args: argparse.Namespace):
     from reports.run.plan import Limits
 
-    for flag, value in (("--max-memory", args.max_memory), ("--max-hours", args.max_hours)):
-        if value is not None and not (math.isfinite(value) and value > 0):
-            raise UserError(f"{flag} must be a positive number")
-    return Limits(memory=None if args.max_memory is None else args.max_memory * 2**30,
-                  hours=args.max_hours)
+    return Limits.from_flags(args.max_memory, args.max_hours)
 
 
 def cmd_run(args: argparse.Namespace) -> int:
@@ -282,55 +277,28 @@ def cmd_sweep(args: argparse.Namespace) -> int:
 
 def _check_serial(plan, path: Path, wall: float) -> int:
     """Re-run a sweep serially; compare its numbers and wall time with the sweep's."""
-    import json
-    import tempfile
+    from reports.run.sweep import check_serial
 
-    import pandas as pd
-
-    from cases.result import atomic_write_text
-    from reports.run.runner import execute
-    from reports.run.units import serial_executor
-    from reports.store import layout
-    from reports.store.layout import METRICS, SUMMARY
-
-    with tempfile.TemporaryDirectory(prefix="contact-vv-serial-") as tmp:
-        t0 = time.perf_counter()
-        ref = execute(plan, Path(tmp), executor=serial_executor, progress=False)
-        serial = time.perf_counter() - t0
-        if ref.failures:
-            raise RunFailed(ref.failures)
-        a = pd.read_csv(path / SUMMARY).drop(columns="wall_s")
-        b = pd.read_csv(ref.path / SUMMARY).drop(columns="wall_s")
-        same = a.equals(b) and (path / METRICS).read_bytes() == (ref.path / METRICS).read_bytes()
-    check = {"parallel_wall_s": wall, "serial_wall_s": serial, "speedup": serial / wall,
-             "identical": bool(same)}
-    atomic_write_text(path / layout.SWEEP_CHECK, json.dumps(check, indent=1))
-    print(f"sweep: serial re-run {serial:.1f} s vs parallel {wall:.1f} s "
-          f"(speed-up {serial / wall:.2f}x); numbers "
-          + ("identical" if same else "DIFFER"))
-    return 0 if same else 1
+    check = check_serial(plan, path, wall)
+    print(f"sweep: serial re-run {check['serial_wall_s']:.1f} s vs parallel {wall:.1f} s "
+          f"(speed-up {check['speedup']:.2f}x); numbers "
+          + ("identical" if check["identical"] else "DIFFER"))
+    return 0 if check["identical"] else 1
 
 
 def _add_jumps(plans: list[Any], limits: Any) -> list[Any]:
-    """The plans with their cycle-jump studies; UserError if none has one."""
-    from reports.run.study_runs import add_jumps
-    from reports.studies.jumpstudy import not_studied
+    """The plans with their cycle-jump studies (:func:`reports.run.study_runs.add_jump_studies`)."""
+    from reports.run.study_runs import add_jump_studies
 
-    plans = [add_jumps(p, limits) for p in plans]
-    if not any(p.jumps for p in plans):
-        why = sorted({f"{p.points[i].name}: {not_studied(s, p.points[i])}"
-                      for p in plans for i, s in p.units()})
-        raise UserError("--jump-study: no run has a cycle jump to halve (" + "; ".join(why)
-                        + ")")
-    for p in plans:
-        if not p.jumps and any(c.kind == "fretting" for c in p.points):
-            print(f"{PROG}: note: --jump-study: {p.name}: no cycle jump to halve "
-                  f"(fretting.jump = {p.points[0].fretting.jump:g})", file=sys.stderr)
+    plans, notes = add_jump_studies(plans, limits)
+    for note in notes:
+        print(f"{PROG}: note: --jump-study: {note}", file=sys.stderr)
     return plans
 
 
 def cmd_threshold(args: argparse.Namespace) -> int:
     from reports.run import threshold as th
+    from reports.run import threshold_table as table
     from reports.run.plan import select_solvers
     from reports.studies.events import EventOptions, event
 
@@ -350,11 +318,11 @@ def cmd_threshold(args: argparse.Namespace) -> int:
                          solvers=tuple(chosen), quick=args.quick, overrides=overrides,
                          options=options, limits=_limits(args),
                          explicit=bool(_solver_list(args.solver)))
-    th.existing(args.out)  # a damaged table is refused before any work
+    table.existing(args.out)  # a damaged table is refused before any work
     t0 = time.perf_counter()
-    rows = th.run(request, log=None if args.no_progress else th.stderr_log)
-    print(th.format_table(request, rows))
-    path = th.write_rows(args.out, rows)
+    rows = th.run(request, log=None if args.no_progress else table.stderr_log)
+    print(table.format_table(request, rows))
+    path = table.write_rows(args.out, rows)
     print(f"threshold: {path} ({time.perf_counter() - t0:.1f} s)")
     failed = [f"{r['solver']} {r['grid']}: {r['status']}" for r in rows
               if r["status"].startswith("failed")]

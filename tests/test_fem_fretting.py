@@ -70,7 +70,7 @@ def test_full_tier_first_cycle_within_the_default_tolerances(k):
     analytic/fretting_case.py).  Measured 2026-11-25, partial slip: wear L2 5.7 % (6 %),
     max 5.6 % (7 %), w_max 0.8 %, loop 0.04 % of μP, energy 0.10 %; gross slip 1.3 %,
     2.6 %, 0.11 %, 0.075 %, 0.05 %; 705 s and 1030 s per point."""
-    from reports.compare.metrics import compare_point
+    from reports.compare.point import compare_point
 
     case = load_case("fretting_isotropic")[k]
     assert case.fem.h == pytest.approx(1.0 / 12.0)

@@ -25,7 +25,7 @@ from cases.build import build
 from cases.model import Case
 from cases.result import SLIP, STICK, RunResult, StepResult
 from reports.compare.cycles import friction_scale
-from reports.compare.metrics import compare_point
+from reports.compare.point import compare_point
 
 
 def _case(text: str) -> Case:

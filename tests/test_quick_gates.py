@@ -79,7 +79,7 @@ def verdicts(out: Path, name: str, declare: dict | None = None) -> pd.DataFrame:
     import dataclasses
 
     from cases.result import RunResult
-    from reports.compare.metrics import point_rows
+    from reports.compare.point import point_rows
     from reports.compare.verdict import decide
     from reports.store.results import scan
 

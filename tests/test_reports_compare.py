@@ -15,12 +15,11 @@ from cases.loader import load_case
 from cases.model import CaseError
 from cases.result import Plane, RunResult, StepResult
 from reports.compare.cycles import compare_tables, friction_scale
-from reports.compare.metrics import (
+from reports.compare.metrics import compare_steps, field_errors
+from reports.compare.point import compare_point
+from reports.compare.sampling import (
     common_axis,
-    compare_point,
-    compare_steps,
     contact_edges,
-    field_errors,
     interior,
     sample,
     stick_band,

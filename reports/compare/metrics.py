@@ -43,17 +43,12 @@ compared too (:func:`compare_tables`); a cycle only one solver has is skipped.
 
 from __future__ import annotations
 
-import itertools
 import math
-from collections.abc import Mapping, Sequence
 
 import numpy as np
-import pandas as pd
 
-from cases.model import Case
-from cases.result import RunResult, StepResult, vm_max_location
+from cases.result import StepResult, vm_max_location
 from reports.compare import maxima
-from reports.compare.cycles import compare_tables, friction_scale
 from reports.compare.sampling import (
     common_axis,
     contact_edges,
@@ -65,10 +60,7 @@ from reports.compare.sampling import (
     stick_band,
     stick_edges,
 )
-from reports.compare.verdict import EXTRA_COLUMNS, METRICS_COLUMNS, decide
-from reports.registry import solvers
 from reports.registry import tolerances as tol
-from reports.registry.resolution import Resolution, unresolved
 
 _TINY = 1e-12
 #: the metric of the max over the stick band (module doc): written, never gated
@@ -76,20 +68,6 @@ KINK = "kink"
 KINK_NOTE = ("max within one cell of the stick-slip boundary, where the traction has a "
              "sqrt(c - r) kink that points h apart miss by O(sqrt(h/a)): it measures the "
              "node spacing, not the solver; not gated (reports.compare.metrics)")
-#: metrics written beside a gated one but never gated: -> (the gated metric whose
-#: tolerance they are shown against, why they are not gated)
-_SHOWN = {KINK: ("max", KINK_NOTE), maxima.EDGE: ("rel", maxima.EDGE_NOTE),
-          maxima.SURFACE: ("rel", maxima.SURFACE_NOTE)}
-
-
-def pairs(names: Sequence[str]) -> list[tuple[str, str]]:
-    """All pairs in the given order, the second solver of a pair its reference; a
-    metamorphic relation pairs with its base only."""
-    def related(a: str, b: str) -> bool:
-        ra, rb = solvers.record(a).base, solvers.record(b).base
-        return (not ra and not rb) or ra == b or rb == a
-
-    return [(a, b) for a, b in itertools.combinations(names, 2) if related(a, b)]
 
 
 def field_errors(fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
@@ -132,7 +110,7 @@ def field_errors(fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
 # ------------------------------------------------------------------ per step
 
 
-def _scalar(step: StepResult, key: str) -> float:
+def scalar(step: StepResult, key: str) -> float:
     value = step.scalars.get(key)
     try:
         value = float(value)
@@ -145,7 +123,7 @@ def _vm_location(step: StepResult) -> tuple[float, float, float, float]:
     """(vm_max, x, y, z) from the scalars, else from the planes (crossing at the ``x0``,
     ``y0`` scalars, default 0)."""
     keys = ("vm_max", "vm_max_x", "vm_max_y", "vm_max_z")
-    vals = tuple(_scalar(step, k) for k in keys)
+    vals = tuple(scalar(step, k) for k in keys)
     if all(math.isfinite(v) for v in vals):
         return vals  # type: ignore[return-value]
     return vm_max_location(step.planes, float(step.scalars.get("x0", 0.0)),
@@ -179,7 +157,7 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
     rows = _surface_rows(sa, sb, a0, p0, band)
     plane_rows, hz, samples = _plane_rows(sa, sb, p0, x0, y0, hx, hy, band)
     cells = (max(hx, cell), max(hy, cell), max(hz, cell) if hz > 0 else 0.0)
-    radius = [_scalar(st, k) for st in (sa, sb) for k in ("a_x", "a_y")]
+    radius = [scalar(st, k) for st in (sa, sb) for k in ("a_x", "a_y")]
     a = max((r for r in radius if math.isfinite(r)), default=a0)
     vm_rows = maxima.rows(samples, rel=vm_rel, cell=cells, a0=a0, a=a, z_below=z_below)
     return rows + plane_rows + vm_rows + _scalar_rows(sa, sb, a0, p0, *cells,
@@ -303,7 +281,7 @@ def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float
     for q in tol.REL_SCALARS:
         if q in ("vm_max", "vm_max_below") and not vm_from_scalars:
             continue  # from the planes (reports.compare.maxima)
-        a, b = _scalar(sa, q), _scalar(sb, q)
+        a, b = scalar(sa, q), scalar(sb, q)
         if q == "vm_max":
             a, b = _vm_location(sa)[0], _vm_location(sb)[0]
         if math.isnan(a) or math.isnan(b):
@@ -313,11 +291,11 @@ def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float
             continue
         rows.append((q, "rel", abs(a - b) / abs(b) if abs(b) > tiny else math.inf))
     for q, cell in (("a_x", hx), ("a_y", hy)):
-        a, b = _scalar(sa, q), _scalar(sb, q)
+        a, b = scalar(sa, q), scalar(sb, q)
         if not (math.isnan(a) or math.isnan(b)) and cell > 0:
             rows.append((q, "cells", abs(a - b) / cell))
     for q in tol.AREA_SCALARS:
-        a, b = _scalar(sa, q), _scalar(sb, q)
+        a, b = scalar(sa, q), scalar(sb, q)
         if math.isnan(a) or math.isnan(b) or h <= 0:
             continue
         if abs(a) <= _TINY * a0**2 and abs(b) <= _TINY * a0**2:
@@ -338,66 +316,3 @@ def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float
 # ------------------------------------------------------------------ per case
 
 
-def point_rows(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
-    """The metric rows of one sweep point, before the verdict: every pair, every common
-    output step, with the status and tolerance the comparisons see themselves."""
-    a0, p0 = case.hertz_scales
-    mu_P = friction_scale(case)
-    x0, y0 = case.plane_centre
-    own = {n: solvers.record(n).cell_size(case) for n in results}
-    records = []
-    for sa_name, sb_name in pairs(list(results)):
-        pair = f"{sa_name}-{sb_name}"
-        cell = max((c for c in (own[sa_name], own[sb_name]) if math.isfinite(c)),
-                   default=0.0)
-        steps_a = {s.number(i): s for i, s in enumerate(results[sa_name].steps)}
-        steps_b = {s.number(i): s for i, s in enumerate(results[sb_name].steps)}
-        for n in sorted(set(steps_a) & set(steps_b)):
-            sa, sb = steps_a[n], steps_b[n]
-            rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=x0, y0=y0,
-                                 cell=cell, z_below=case.stress.z_below,
-                                 vm_rel=tol.tolerance(case, pair, "vm_max", "rel")[0])
-            cycle = _scalar(sb, "cycle")
-            if math.isfinite(cycle):
-                rows += compare_tables(results[sa_name].tables, results[sb_name].tables,
-                                       cycle, mu_P)
-            exact = solvers.exact_pair(pair)
-            resolution = None if exact else step_resolution(sa, sb, cell)
-            for quantity, metric, value in rows:
-                shown = None if exact else _SHOWN.get(metric)  # a band's max, never gated
-                limit, key = tol.tolerance(
-                    case, pair, quantity, _SHOWN[metric][0] if metric in _SHOWN else metric)
-                status, note = tol.status(case, quantity)
-                coarse = unresolved(quantity, metric, resolution)
-                if status == tol.GATED and (shown or coarse):
-                    status, note = tol.NOT_CONVERGED, coarse or shown[1]
-                records.append({
-                    "status": status, "note": note,
-                    "quantity": quantity, "pair": pair, "metric": metric, "value": value,
-                    "tolerance": limit, "case": case.name, "param": case.param, "step": n,
-                    "s": _scalar(sb, "s"), "cycle": _scalar(sb, "cycle"),
-                    "tolerance_key": key, "oracle": solvers.oracle(pair),
-                })
-    frame = pd.DataFrame.from_records(records, columns=METRICS_COLUMNS + EXTRA_COLUMNS)
-    return frame
-
-
-def step_resolution(sa: StepResult, sb: StepResult, cell: float) -> Resolution | None:
-    """The cells (the coarser of the sample spacings and ``cell``) across the contact
-    radius and the slip zone of reference ``sb`` (else ``sa``) (:mod:`reports.registry.resolution`);
-    None without a contact area."""
-    h = max(spacing(sa.x), spacing(sa.y), spacing(sb.x), spacing(sb.y), cell)
-    area = next((v for v in (_scalar(sb, "contact_area"), _scalar(sa, "contact_area"))
-                 if math.isfinite(v) and v > 0), math.nan)
-    if not (math.isfinite(area) and h > 0):
-        return None
-    stick = next((v for v in (_scalar(sb, "stick_area"), _scalar(sa, "stick_area"))
-                  if math.isfinite(v)), 0.0)
-    a, c = math.sqrt(area / math.pi), math.sqrt(max(stick, 0.0) / math.pi)
-    return Resolution(contact=a / h, slip=max(a - c, 0.0) / h)
-
-
-def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
-    """metrics.csv rows of one sweep point alone: :func:`point_rows` with the verdict of
-    :func:`reports.compare.verdict.decide` (a run decides its rows once, with its studies)."""
-    return decide(point_rows(case, results))

@@ -3,6 +3,7 @@ each point chosen (:mod:`reports.registry.solvers`), hopeless grids refused befo
 
 from __future__ import annotations
 
+import math
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -71,6 +72,15 @@ class Limits:
 
     memory: float | None = None
     hours: float = 48.0
+
+    @classmethod
+    def from_flags(cls, max_memory: float | None, max_hours: float) -> Limits:
+        """From ``--max-memory`` [GiB] and ``--max-hours``; UserError unless positive."""
+        for flag, value in (("--max-memory", max_memory), ("--max-hours", max_hours)):
+            if value is not None and not (math.isfinite(value) and value > 0):
+                raise UserError(f"{flag} must be a positive number")
+        return cls(memory=None if max_memory is None else max_memory * 2**30,
+                   hours=max_hours)
 
     def check(self, case: Case, solver: str) -> None:
         """CaseError naming the keys to change when ``solver``'s estimate for ``case``

@@ -37,7 +37,7 @@ from tqdm.auto import tqdm
 
 from cases.result import RunResult, atomic_write_text
 from reports.compare import verdict
-from reports.compare.metrics import point_rows
+from reports.compare.point import point_rows
 from reports.registry.errors import UserError
 from reports.registry.tolerances import TOLERANCE_COLUMNS
 from reports.run import study_runs

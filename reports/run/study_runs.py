@@ -267,3 +267,21 @@ def jump_table(plan: CasePlan, fine_rows: dict[tuple[int, str], list[dict[str, A
                              "cell_size": cell})
     frame = pd.DataFrame.from_records(rows, columns=JUMP_COLUMNS)
     return frame.astype({"step": "int64"}) if not frame.empty else frame
+
+
+def add_jump_studies(plans: list[CasePlan], limits: Limits | None
+                     ) -> tuple[list[CasePlan], list[str]]:
+    """``plans`` with their cycle-jump studies (:func:`add_jumps`) and a note per fretting
+    case without a jump to halve; UserError if no plan has one."""
+    from reports.registry.errors import UserError
+
+    plans = [add_jumps(p, limits) for p in plans]
+    if not any(p.jumps for p in plans):
+        why = sorted({f"{p.points[i].name}: {not_studied(s, p.points[i])}"
+                      for p in plans for i, s in p.units()})
+        raise UserError("--jump-study: no run has a cycle jump to halve (" + "; ".join(why)
+                        + ")")
+    notes = [f"{p.name}: no cycle jump to halve (fretting.jump = "
+             f"{p.points[0].fretting.jump:g})" for p in plans
+             if not p.jumps and any(c.kind == "fretting" for c in p.points)]
+    return plans, notes

@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import math
 import tempfile
+import time
 import tomllib
 import uuid
 from collections.abc import Iterator
@@ -25,9 +26,9 @@ from typing import Any
 from cases.loader import case_path, load_case, read_toml, value_label
 from cases.model import Case, CaseError
 from reports.registry import solvers
-from reports.registry.errors import UserError
+from reports.registry.errors import RunFailed, UserError
 from reports.run.plan import CasePlan, Limits, plan_case
-from reports.run.units import UnitOutcome, run_unit
+from reports.run.units import UnitOutcome, run_unit, serial_executor
 
 
 def parse_value(text: str) -> Any:
@@ -231,3 +232,31 @@ class DaskExecutor:
         finally:
             for future in futures:
                 future.cancel()
+
+
+def check_serial(plan: CasePlan, path: Path, wall: float) -> dict[str, Any]:
+    """Re-run a sweep serially into a scratch directory: its wall time against the
+    sweep's ``wall``, and whether its summary (but the wall times) and metrics are the
+    sweep's; written as ``sweep_check.json`` beside the sweep's results."""
+    import json
+
+    import pandas as pd
+
+    from cases.result import atomic_write_text
+    from reports.run.runner import execute
+    from reports.store import layout
+
+    with tempfile.TemporaryDirectory(prefix="contact-vv-serial-") as tmp:
+        t0 = time.perf_counter()
+        ref = execute(plan, Path(tmp), executor=serial_executor, progress=False)
+        serial = time.perf_counter() - t0
+        if ref.failures:
+            raise RunFailed(ref.failures)
+        a = pd.read_csv(path / layout.SUMMARY).drop(columns="wall_s")
+        b = pd.read_csv(ref.path / layout.SUMMARY).drop(columns="wall_s")
+        same = a.equals(b) and \
+            (path / layout.METRICS).read_bytes() == (ref.path / layout.METRICS).read_bytes()
+    check = {"parallel_wall_s": wall, "serial_wall_s": serial, "speedup": serial / wall,
+             "identical": bool(same)}
+    atomic_write_text(path / layout.SWEEP_CHECK, json.dumps(check, indent=1))
+    return check
