@@ -25,8 +25,8 @@ from cases.model import Case
 from cases.result import Cost, RunResult, StepResult
 
 from .contact import ContactConvergenceError
+from .errors import FemError, FemUnsupported
 from .mesh import MeshError
-from .model import FemError, FemUnsupported
 from .solver import solve as _solve
 from .vtu import read_vtu, write_vtu
 

@@ -1,107 +1,18 @@
 """What a case will cost the FEM reference, estimated before any meshing or allocation.
 
-Mesh.  :func:`mesh_spec` builds the :class:`~fem_reference.mesh.MeshSpec` that
-:class:`~fem_reference.model.FemModel` builds (``case.fem`` block, depth and h in units
-of a0; the quarter/half/full shape of the case's symmetry, :func:`~fem_reference.model.
-choose_shape`; the refined zone r_c = 1.25 a_max + 2 h from the expected contact radius
-a_max, Argatov's worn radius for sliding wear), and :func:`element_count` counts the
-tetrahedra gmsh will make without meshing: the element density ``1 / (C_TET size³)``
-integrated over the block, ``size(r, z)`` the size field of :mod:`fem_reference.mesh`
-(h in the refined cylinder, ``min(h, h_surface + 0.1 z)`` there with a surface layer,
-``h + grading d`` beyond, capped at h_max), by Gauss-Legendre
-panels in cylindrical coordinates (r, z): breakpoints at the zone's radius and depth, at
-r_fine and at L (beyond which the square block covers part of each circle), and at most
-40 geometric panels on the scale h/grading beyond the zone, so that any h costs the same
-few thousand points (``fem.h = 1e-6``: 20 ms).  ``C_TET = 0.225`` (a regular tetrahedron
-of edge ``size`` has 0.118 size³; gmsh's are larger), fitted on the meshes of this
-project's mesh cache (L 4-40 a0, h 0.125-0.5 a0, quarter and half blocks, with and
-without r_fine): measured / estimated tets 0.88-1.21.  At h ~ a0/8 the graded shell
-around the zone holds half the elements, so they grow like h⁻² to h⁻³ there, like h⁻³
-for h → 0.  P2 nodes = 1.35 tets + 4.5 tets^(2/3) (the second term the boundary; within
-4 %), free DOFs n = 3 nodes less the supports (7.5 %, 4.5 %, 1.5 % for quarter, half and
-full blocks).  Condensed DOFs m: top facets within r_c, ``∫ dA / (C_TRI size²)`` with
-C_TRI = 0.405 (within 7 %), P2 surface nodes 2 F + 2.5 √F, times 1 (normal-only contact)
-or 3 components.
-
-Memory (peak RSS of the ``contact-vv run`` process): ``BASE_BYTES`` (the CLI's
-interpreter and imports, 140 MB, the mesh, and what a sweep's earlier points leave
-behind: measured 160-260 MB) plus the largest stage of :class:`~fem_reference.model.
-FemModel`:
-
-- assembly: 55 kB per tetrahedron (element matrices and 900 COO triplets each, then the
-  CSR; measured 51-59 kB);
-- the kept PARDISO factor with the stiffness matrices: ``290 n^(1/3)`` bytes per DOF
-  (nested dissection fills like n^(4/3); measured 8.8, 9.1, 12.5, 12.8 kB per DOF at
-  n = 37.7k, 29k, 71k, 91k), once per distinct Poisson's ratio;
-- the condensation ``Sᵀ K⁻¹ S`` (:meth:`~fem_reference.elasticity.Factorization.
-  schur_inverse`): three dense n × 512 blocks (right-hand sides, PARDISO's solution, its
-  copy; measured 2.96-3.1) and the dense operator, 8 m² bytes;
-- the dense surface operators: C₁, C_rel, its Cholesky factor, K_rel = C_rel⁻¹ and their
-  temporaries, ``DENSE_COPIES`` × 8 m² (measured 3.9).
-
-Assembly grows like h⁻³, the factor (n^(4/3)) and the dense operator (m²) like h⁻⁴; the
-condensation blocks lead down to h ≈ a0/30 with friction (3 components), a0/250 without,
-the dense operators below.  :attr:`Cost.memory_keys` and ``time_keys`` are
-the keys whose refinement (fem.h halved; fem.block, fem.depth, sliding_wear.distance,
-fretting.cycles, fretting.steps_per_cycle doubled; sliding_wear.step halved) raises the
-estimate by 10 % or more, strongest first.  Fretting counts its contact solves like the
-load path (fem_reference/fretting.py): normal loading, the loading steps 0 -> +A, and
-per simulated cycle ``steps_per_cycle`` steps of a predictor and (with wear) a
-corrector solve.
-
-Time (a cold point: a sweep reuses the mesh, factorisation and condensation for its
-later points, :func:`fem_reference.model._core`): 2 s of start-up and writing; meshing
-2e-5 s and assembly 1.2e-4 s per tetrahedron (measured 0.9-1.8e-4); PARDISO
-factorisation 2e-9 n² s (measured 1.4-3.4e-9: the machine's load); condensation
-5.5e-10 n^(4/3) s per condensed column (3.4-8.6e-10); C_rel's Cholesky and K_rel
-1.2e-10 m³ s; then per Newton iteration the Woodbury solve on the A = m (a_max/r_c)²
-DOFs in contact, 1.1e-10 A³ s (measured 1.0-1.3e-10), and the dense products, 2e-9 m² s.
-Iterations: 5 for a frictionless or full-sliding solve (measured 4-6), 10 per friction
-increment (52-65 for 6), 3 per wear step (2-5); the normal increments of dissimilar
-materials count (k/5)² of a full one.  0.3 s per output step.
-
-Calibration, 2026-11, on this project's 2-core machine shared with other jobs
-(``/usr/bin/time -v contact-vv run CASE --solver fem`` with an empty mesh cache; tets,
-free DOFs, m from the manifest; peak RSS of the process, over all its sweep points; wall
-time of the (cold) point from summary.csv, start-up excluded; "est" the estimate):
-
-==============================  =======  =======  ======  ======  ======  ======  ======
-case (point)                    tets     DOFs     m       peak    est.    wall    est.
-                                (est.)   (est.)   (est.)  MB      MB      s       s
-==============================  =======  =======  ======  ======  ======  ======  ======
-hertz --quick                   8614     37710    597     1037    1108    7.1     7.0
-                                8899     38700    600
-hertz                           8614     37710    597     1037    1108    6.2     7.0
-                                8899     38700    600
-hertz --quick, fem.h=0.1        13078    56352    855     1510    1643    8.0     12.4
-                                13790    58841    866
-hertz --quick, fem.h=0.08       20596    87440    1230    2420    2637    16.5    26.2
-                                22267    93303    1266
-hertz --quick, fem.block=10     8518     37382    596     1034    1096    3.9     6.9
-                                8788     38240    600
-cattaneo_mindlin --quick        16520    71250    3449    2150    2264    50.3    55.5
-(Qx=0.765)                      17798    77627    3528
-sliding_friction --quick        16520    71250    1166    1948    2175    12.3    19.3
-(mu=0.15)                       17798    77627    1176
-sliding_friction --quick,       31189    132021   2211    3920    4658    61.0    69.1
-load.slide_angle=45 (full)      35596    156390   2318
-dissimilar --quick (two ν)      16520    71250    3449    3054    3324    62.0    81.5
-                                17798    77627    3528
-pin_on_disk --quick (mu=0)      10973    47768    1266    (1)     1386    13.0    16.8
-                                11394    49007    1288
-pin_on_disk --quick (mu=0.5)    21153    90711    2514    2704    2831    75.1    74.1
-                                22788    98500    2540
-pin_on_disk --quick,            3420     15716    552     (1)     539     4.7     4.9
-fem.h=0.2 (mu=0)                3221     14790    530
-pin_on_disk --quick,            6468     29018    1039    951     882     10.6    9.1
-fem.h=0.2 (mu=0.5)              6442     29378    1037
-==============================  =======  =======  ======  ======  ======  ======  ======
-
-(1) the process peak is that of the sweep's other point, on the next row.
-
-Estimate / measurement: tets within a factor 1.14, DOFs 1.18, m 1.05; memory 0.93-1.19
-(within 1.2); time 0.86-1.77 (within 1.8, mostly above: the constants were taken from
-the runs under load).  ``tests/test_fem_cost.py`` holds the estimate to these numbers.
+Mesh: :func:`mesh_spec` builds the :class:`~fem_reference.mesh.MeshSpec` that
+:class:`~fem_reference.model.FemModel` builds, and :func:`element_count` counts the
+tetrahedra gmsh will make without meshing, integrating the element density of the size
+field of :mod:`fem_reference.mesh` over the block by Gauss-Legendre panels in (r, z);
+P2 nodes, free DOFs and the condensed surface DOFs follow.  Memory: the process's base
+plus the largest stage of the model — assembly, the kept PARDISO factor, the
+condensation ``Sᵀ K⁻¹ S``, the dense surface operators.  Time: start-up, meshing,
+assembly, factorisation and condensation of a cold point, then the contact solves of
+the load path (Newton iterations on the DOFs in contact).  :attr:`Cost.memory_keys` and
+``time_keys`` name the keys whose refinement raises the estimate by 10 % or more,
+strongest first.  The model's constants are fitted on this project's meshes and runs;
+the fit, the measurements and the scaling of each stage are in ``benchmarks/README.md``
+("The FEM's cost estimate").
 """
 
 from __future__ import annotations
@@ -117,7 +28,8 @@ from cases.model import Case, FemSettings
 from cases.result import Cost
 
 from .mesh import SURFACE_GRADING, MeshSpec
-from .model import FemModel, choose_shape, expected_radius, has_companion, reference_length
+from .model import FemModel
+from .shape import choose_shape, expected_radius, has_companion, reference_length
 
 C_TET = 0.225  # mean tetrahedron volume / size³ of gmsh's meshes
 C_TRI = 0.405  # mean surface triangle area / size²

@@ -36,7 +36,8 @@ import numpy as np
 
 from cases.result import STICK, RunEvent
 
-from .contact import Control, Evaluation, Solution
+from .contact import Control, Solution
+from .contact_law import Evaluation
 from .loading import (
     add_wear,
     commit,
@@ -45,8 +46,8 @@ from .loading import (
     progress_bar,
     solve_increment,
 )
-from .model import slide_direction, wear_norms
 from .run import OutputState, Run
+from .shape import slide_direction, wear_norms
 
 #: "load lost": under a held approach the least P of a cycle below this fraction of the
 #: load after the initial loading (the same definition as the half-space solver's)

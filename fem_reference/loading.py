@@ -26,9 +26,11 @@ import numpy as np
 from cases.model import Case, CaseError, SlidingWear
 from cases.result import OPEN, SLIP, STICK
 
-from .contact import Control, Evaluation, Solution, augmented, evaluate
-from .model import FemError, slide_direction, wear_compliances
+from .contact import Control, Solution, augmented
+from .contact_law import Evaluation, evaluate
+from .errors import FemError
 from .run import OutputState, Run, hertz_start
+from .shape import slide_direction, wear_compliances
 
 N_NORMAL_DISSIMILAR = 5  # normal load increments of dissimilar materials
 N_TANGENTIAL = 5  # tangential load (or shift) increments
@@ -65,7 +67,7 @@ def solve_increment(run: Run, ctrl: Control, cw: float | np.ndarray = 0.0
     node) from the current state, make the solution the run's state and evaluate the
     probes on it.
 
-    Raises :class:`~fem_reference.model.FemError` when the contact reaches the edge of
+    Raises :class:`~fem_reference.errors.FemError` when the contact reaches the edge of
     the FE contact zone (1.5 elements from r_c).
     """
     m = run.model

@@ -34,8 +34,6 @@ DOFs of the full block: a third of its factorisation and condensation time.
 
 from __future__ import annotations
 
-import math
-import os
 import time
 from dataclasses import dataclass
 from typing import NamedTuple
@@ -45,116 +43,17 @@ import scipy.linalg as la
 
 from cases.model import Case, CaseError
 
-from .contact import Law, axes_tensor, norm_with
-from .elasticity import Factorization, P2Space, stiffness
-from .mesh import MeshSpec, block_mesh
-from .surface import ContactSurface
-
-
-class FemError(RuntimeError):
-    """The FEM reference failed on this case (the message names the cause)."""
-
-
-class FemUnsupported(FemError, CaseError):
-    """The case needs a feature the FEM reference does not have (also a CaseError)."""
-
-
-def reference_length(case: Case) -> float:
-    """The length unit of ``case.fem``: the Hertz radius a0 (load control) or √(R δ)."""
-    if case.load.P is not None:
-        return case.hertz_a0
-    return math.sqrt(case.R * case.load.approach)
-
-
-def slide_direction(case: Case) -> np.ndarray:
-    a = math.radians(case.load.slide_angle)
-    return np.array([math.cos(a), math.sin(a)])
-
-
-def wear_norms(case: Case, slip: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """``‖Δg‖_i`` of bodies a and b (Eq. 21) for slip increments Δg (..., 2)."""
-    beta = case.friction.beta
-    return tuple(norm_with(axes_tensor(body.i1**2, body.i2**2, beta), slip)
-                 for body in (case.a, case.b))
-
-
-def wear_compliances(case: Case, slip: np.ndarray) -> tuple[float, float]:
-    """``‖Δg‖_i`` of bodies a and b for one slip increment Δg (2,) (Eq. 21)."""
-    ia, ib = wear_norms(case, slip)
-    return float(ia), float(ib)
-
-
-def expected_radius(case: Case, a_ref: float) -> float:
-    """Largest contact radius expected during the run, in units of ``a_ref``.
-
-    Hertz for static cases; Argatov's worn-pin radius (docs/cases.md, case 4)
-    a⁴ = a0⁴ + 4 i_w P s R / π at the end of a sliding-wear run.
-
-    Fretting: the worn depth is estimated by Archard's law with the Hertz pressure p0
-    and the largest slip a cycle can have, 4A (gross slip), over all cycles, with the
-    larger wear coefficient of each body: w = (i_a + i_b) p0 4A N.  Under a held load
-    the radius grows like the worn pin's (s = 4AN); under a held approach δ the flattened
-    sphere closes up to a² = R(δ + w), never beyond the rigid overlap a² = 2Rδ.
-    """
-    a = a_ref
-    if case.kind == "sliding_wear" and case.sliding_wear is not None:
-        d = slide_direction(case)
-        ia, ib = wear_compliances(case, d)
-        s = case.sliding_wear.distance
-        a = (a_ref**4 + 4.0 * (ia + ib) * case.load.P * s * case.R / math.pi) ** 0.25
-    elif case.kind == "fretting" and case.fretting is not None:
-        fr = case.fretting
-        i_w = max(case.a.i1, case.a.i2) + max(case.b.i1, case.b.i2)
-        s = 4.0 * fr.amplitude * fr.cycles
-        if case.load.P is not None:
-            a = (a_ref**4 + 4.0 * i_w * case.load.P * s * case.R / math.pi) ** 0.25
-        else:
-            p0 = 2.0 * case.E_star * a_ref / (math.pi * case.R)
-            growth = 1.0 + i_w * p0 * s / case.load.approach
-            a = a_ref * math.sqrt(min(growth, 2.0))
-    return a / a_ref
-
-
-def has_companion(case: Case) -> bool:
-    """Whether the half block carries the y friction traction by an antisymmetric
-    companion problem (module doc): identical materials in full sliding along ±x, friction
-    axes not along x, y."""
-    fr = case.friction
-    if case.kind == "fretting" or not case.identical_materials or fr.mu1 == 0.0:
-        return False
-    if not (case.load.tangential_mode == "sliding" or case.kind == "sliding_wear"):
-        return False
-    return _slides_along_x(case) and not _axes_aligned(fr)
-
-
-def _axes_aligned(fr) -> bool:
-    """Isotropic friction, or tribological axes along x and y."""
-    beta = fr.beta % 90.0
-    return fr.isotropic or min(beta, 90.0 - beta) < 1e-12
-
-
-def _slides_along_x(case: Case) -> bool:
-    return abs(math.sin(math.radians(case.load.slide_angle))) < 1e-12
-
-
-def choose_shape(case: Case) -> str:
-    fr = case.friction
-    mode = case.load.tangential_mode
-    if fr.mu1 == 0.0 and fr.mu2 == 0.0:
-        return "quarter"
-    aligned = _axes_aligned(fr)
-    if mode == "none" and case.kind == "static" and aligned:
-        return "quarter"
-    along_x = False
-    if mode == "load":
-        along_x = not case.load.Qy
-    elif mode == "shift":
-        along_x = not case.load.shift_y
-    if mode == "sliding" or case.kind in ("sliding_wear", "fretting"):
-        along_x = _slides_along_x(case)
-    if (aligned and along_x) or has_companion(case):
-        return "half"
-    return "full"
+from . import block
+from .contact_law import Law, axes_tensor, norm_with
+from .errors import FemError, FemUnsupported
+from .mesh import MeshSpec
+from .shape import (
+    choose_shape,
+    expected_radius,
+    has_companion,
+    reference_length,
+    slide_direction,
+)
 
 
 class BodyDisplacement(NamedTuple):
@@ -200,110 +99,6 @@ class Symmetry:
             sy[np.abs(xy[:, 1]) <= tol] = 0.0
             xy[:, 1] = np.abs(xy[:, 1])
         return xy, sx, sy
-
-
-def _cache_enabled() -> bool:
-    return os.environ.get("CONTACT_VV_FEM_CACHE", "1") not in ("0", "", "no", "false")
-
-
-class _Core:
-    """The case-independent part of a model: mesh, P2 space, supports, factorisations
-    and the condensed one-block compliances C₁(ν) (E = 1) of the contact DOFs."""
-
-    def __init__(self, spec: MeshSpec, a_ref: float, comps: tuple[int, ...],
-                 nus: tuple[float, ...], log=None, companion: bool = False):
-        t0 = time.perf_counter()
-        self.mesh = block_mesh(spec, a_ref)
-        t_mesh = time.perf_counter()
-        self.space = space = P2Space(self.mesh)
-        nodes = space.nodes
-        tol = 1e-9 * a_ref
-        fixed = np.zeros(space.ndofs, dtype=bool)
-        bottom = np.nonzero(np.abs(nodes[2] + spec.H * a_ref) < tol)[0]
-        fixed[(3 * bottom[:, None] + np.arange(3)).ravel()] = True
-        if spec.shape == "quarter":
-            fixed[3 * np.nonzero(np.abs(nodes[0]) < tol)[0]] = True
-        if spec.shape in ("quarter", "half"):
-            fixed[3 * np.nonzero(np.abs(nodes[1]) < tol)[0] + 1] = True
-        self.fixed = fixed
-        self.free = np.nonzero(~fixed)[0]
-        # the companion's supports: the same bottom, the mirror plane Y = 0 holding u_x, u_z
-        self.free_anti = None
-        if companion:
-            plane = np.nonzero(np.abs(nodes[1]) < tol)[0]
-            fixed_anti = np.zeros(space.ndofs, dtype=bool)
-            fixed_anti[(3 * bottom[:, None] + np.arange(3)).ravel()] = True
-            fixed_anti[(3 * plane[:, None] + np.array([0, 2])).ravel()] = True
-            self.free_anti = np.nonzero(~fixed_anti)[0]
-        self.surface = ContactSurface(space, spec.r_ref * a_ref, (0, 1, 2), fixed)
-        self.top = ContactSurface(space, np.inf, (2,), fixed)
-        self.cidx = np.nonzero(np.isin(self.surface.dof_comp, comps))[0]
-        cdofs = self.surface.dofs[self.cidx]
-        pos = np.searchsorted(self.free, cdofs)
-        if not np.array_equal(self.free[pos], cdofs):
-            raise FemError("internal error: a condensed surface DOF is fixed")
-        # stiffness, factorisation and condensation per distinct Poisson's ratio
-        self.factor: dict[float, Factorization] = {}
-        self.factor_anti: dict[float, Factorization] = {}  # the companion's (no condensation)
-        self.stiffness: dict[float, object] = {}  # rows of K (E = 1) at the fixed DOFs
-        self.C1: dict[float, np.ndarray] = {}
-        t_asm = t_fac = t_cond = 0.0
-        for nu in sorted(set(nus)):
-            ta = time.perf_counter()
-            K = stiffness(space, nu)
-            Kff = K[self.free][:, self.free].tocsr()
-            self.stiffness[nu] = K[np.nonzero(fixed)[0]].tocsr()
-            tb = time.perf_counter()
-            F = Factorization(Kff, partial=pos)
-            tc = time.perf_counter()
-            self.C1[nu] = F.schur_inverse()
-            td = time.perf_counter()
-            self.factor[nu] = F
-            t_anti = 0.0
-            if self.free_anti is not None:
-                te = time.perf_counter()
-                fa = self.free_anti
-                self.factor_anti[nu] = Factorization(K[fa][:, fa].tocsr())
-                t_anti = time.perf_counter() - te
-            t_asm, t_cond = t_asm + tb - ta, t_cond + td - tc
-            t_fac += tc - tb + t_anti
-            if log:
-                log(f"nu={nu}: {Kff.shape[0]} free DOFs, assembly {tb - ta:.1f} s, "
-                    f"factorisation {tc - tb:.1f} s, "
-                    f"condensation ({pos.size} DOFs) {td - tc:.1f} s")
-        self.timings = {"mesh_s": t_mesh - t0, "assembly_s": t_asm, "factorisation_s": t_fac,
-                        "condensation_s": t_cond}
-        self.uses = 0
-
-    def release(self) -> None:
-        for F in (*self.factor.values(), *self.factor_anti.values()):
-            F.free()
-        self.factor.clear()
-        self.factor_anti.clear()
-
-
-_CORE: list = []  # [(key, core)]: the last core, kept for the next case of a sweep
-
-
-def _core(spec: MeshSpec, a_ref: float, comps: tuple[int, ...], nus: tuple[float, ...],
-          log=None, companion: bool = False) -> _Core:
-    """The core for these parameters, reused from the previous call when they match.
-
-    A sweep (μ, β, Q values) runs the same mesh, materials and contact DOFs again and
-    again: the mesh, factorisation and condensation are then done once.  Only the last
-    core is kept; ``CONTACT_VV_FEM_CACHE=0`` disables the reuse.
-    """
-    key = (spec.key(), float(a_ref), tuple(comps), tuple(sorted(set(nus))), companion)
-    if _cache_enabled() and _CORE and _CORE[0][0] == key and _CORE[0][1].factor:
-        core = _CORE[0][1]
-    else:
-        while _CORE:
-            _CORE.pop()[1].release()
-        core = _Core(spec, a_ref, comps, nus, log, companion)
-        if _cache_enabled():
-            _CORE.append((key, core))
-    core.uses += 1
-    return core
 
 
 class FemModel:
@@ -361,8 +156,9 @@ class FemModel:
         if self.sym.companion and not normal_only:
             raise FemError("internal error: an antisymmetric companion needs a normal "
                            "contact problem")
-        core = _core(self.spec, self.a_ref, comps, (case.a.nu, case.b.nu), log,
-                     companion=self.sym.companion)
+        core = block.factorised_block(self.spec, self.a_ref, comps,
+                                      (case.a.nu, case.b.nu), log,
+                                      companion=self.sym.companion)
         self.core = core
         self.mesh, self.space = core.mesh, core.space
         self.fixed, self.free = core.fixed, core.free
@@ -456,5 +252,5 @@ class FemModel:
 
     def free_memory(self) -> None:
         """Release the factorisations unless the core is kept for the next case."""
-        if not _cache_enabled():
+        if not block.cache_enabled():
             self.core.release()

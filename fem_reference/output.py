@@ -47,7 +47,7 @@ import numpy as np
 from cases.model import Body
 from cases.result import OPEN, STICK, Plane, StepResult, vm_max_location
 
-from .contact import Evaluation
+from .contact_law import Evaluation
 from .contact_zone import ContactZone, closing_measure, contact_zone
 from .model import BodyDisplacement
 from .run import OutputState, Run

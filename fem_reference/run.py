@@ -16,7 +16,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .contact import Evaluation, Points, Solution
+from .contact import Solution
+from .contact_law import Evaluation, Points
 from .far_field import block_offset, block_offset_t
 from .model import FemModel
 from .nodal import coefficients, dual_weights, modified_basis

@@ -25,7 +25,8 @@ import scipy.sparse as sp
 
 from cases.model import Grid
 
-from .model import FemError, FemModel
+from .errors import FemError
+from .model import FemModel
 
 RAYS_PER_QUARTER = 24
 LINE_DIVISIONS = 20.0  # line probes per element size h (at least)

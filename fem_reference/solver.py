@@ -34,9 +34,10 @@ import meshio
 from cases.model import Case
 from cases.result import RunResult, StepResult
 
+from .errors import FemUnsupported
 from .fretting import fretting_path
 from .loading import sliding_wear_path, static_path
-from .model import FemModel, FemUnsupported
+from .model import FemModel
 from .output import step_output
 from .run import OutputState, Run, start_run
 

@@ -88,6 +88,25 @@ def _ellipse(y1, y2, a, b, t_start=None, iters: int = 100):
     return v1, v2, t
 
 
+def _projection(fr: Friction, p_n: np.ndarray, accelerate: bool):
+    """(s1, s2, proj): the scaling of the iterate v along (e1, e2) and the projection onto
+    the friction sets at the pressure p_n."""
+    mu1, mu2 = fr.mu1, fr.mu2
+    if not accelerate:
+        # section 3.4 (III): v = q = M^-1 R p_t, projection onto discs of radius p_n
+        return mu1, mu2, lambda v1, v2: _disc(v1, v2, p_n)
+    # Euclidean metric: v = p_t in the axes (e1, e2), projection onto the ellipses
+    if mu1 == mu2:  # isotropic: the ellipses are discs
+        return 1.0, 1.0, lambda v1, v2: _disc(v1, v2, mu1 * p_n)
+    t_last = [np.zeros_like(p_n)]  # secular roots of the last projection (warm start)
+
+    def proj(v1, v2):
+        v1, v2, t_last[0] = _ellipse(v1, v2, mu1 * p_n, mu2 * p_n, t_last[0])
+        return v1, v2
+
+    return 1.0, 1.0, proj
+
+
 def solve_tangential(
     apply_tt: Callable[[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]],
     b_x: np.ndarray,
@@ -103,29 +122,12 @@ def solve_tangential(
     max_iter: int = 20000,
 ) -> TangentialSolution:
     """Frictional tractions for fixed p_n; L bounds the largest eigenvalue of A_tt."""
-    mu1, mu2, beta = fr.mu1, fr.mu2, fr.beta
+    mu1, beta = fr.mu1, fr.beta
     if mu1 == 0 or not np.any(p_n > 0):
         z = np.zeros_like(p_n)
         return TangentialSolution(z, z.copy(), 0, 0.0)
     accelerate = method == "cg"
-    if accelerate:
-        # Euclidean metric: v = p_t in the axes (e1, e2), projection onto the ellipses
-        s1 = s2 = 1.0
-        t_last = np.zeros_like(p_n)  # secular roots of the last projection (warm start)
-
-        def proj(v1, v2):
-            nonlocal t_last
-            if mu1 == mu2:  # isotropic: the ellipses are discs
-                return _disc(v1, v2, mu1 * p_n)
-            v1, v2, t_last = _ellipse(v1, v2, mu1 * p_n, mu2 * p_n, t_last)
-            return v1, v2
-    else:
-        # section 3.4 (III): v = q = M^-1 R p_t, projection onto discs of radius p_n
-        s1, s2 = mu1, mu2
-
-        def proj(v1, v2):
-            return _disc(v1, v2, p_n)
-
+    s1, s2, proj = _projection(fr, p_n, accelerate)
     step = 1.0 / (L * max(s1, s2) ** 2)
 
     def slip(v1, v2):

@@ -109,7 +109,8 @@ DEFECTS = [
            ("spence",)),
     # ---------------------------------------------------------------- fem_reference
     Defect("FEM: friction axes turned the wrong way",
-           "fem_reference/contact.py", "b = np.radians(beta_deg)", "b = np.radians(-beta_deg)",
+           "fem_reference/contact_law.py", "b = np.radians(beta_deg)",
+           "b = np.radians(-beta_deg)",
            ("pin_on_disk_orthotropic",), fem=True),
     Defect("FEM: Lame's lambda with (1 - nu) for (1 - 2 nu)",
            "fem_reference/elasticity.py",

@@ -10,8 +10,8 @@ import scipy.sparse as sp
 
 from cases.model import Body, Friction
 from cases.result import OPEN, SLIP, STICK
-from fem_reference.contact import Law, Points, axes_tensor, evaluate, norm_with
-from fem_reference.model import wear_compliances
+from fem_reference.contact_law import Law, Points, axes_tensor, evaluate, norm_with
+from fem_reference.shape import wear_compliances
 
 pytestmark = pytest.mark.fem
 

@@ -62,8 +62,8 @@ def test_estimate_matches_the_calibration_runs(name, point, tets, dofs, m, peak_
 
 def test_estimate_builds_the_solvers_mesh_spec(monkeypatch):
     """The spec, condensed components and Poisson's ratios the estimate assumes are the
-    ones FemModel builds (caught where it asks for its core, before any meshing)."""
-    from fem_reference import model
+    ones FemModel builds (caught where it asks for its factorised block, before any meshing)."""
+    from fem_reference import block, model
 
     seen = {}
 
@@ -75,7 +75,7 @@ def test_estimate_builds_the_solvers_mesh_spec(monkeypatch):
                     companion=companion)
         raise Stop
 
-    monkeypatch.setattr(model, "_core", fake_core)
+    monkeypatch.setattr(block, "factorised_block", fake_core)
     for name in ("hertz", "cattaneo_mindlin", "sliding_friction", "dissimilar",
                  "pin_on_disk", "pin_on_disk_orthotropic"):
         for case in load_case(name, quick=True):

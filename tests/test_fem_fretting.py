@@ -106,7 +106,7 @@ def test_expected_radius_and_model_of_a_fretting_case():
     half model, along 30° the full block."""
     from dataclasses import replace
 
-    from fem_reference.model import choose_shape, expected_radius
+    from fem_reference.shape import choose_shape, expected_radius
 
     worn = load_case("fretting_orthotropic", quick=True)[0]
     assert expected_radius(worn, math.sqrt(worn.R * worn.load.approach)) == pytest.approx(
