@@ -105,7 +105,7 @@ def check_uncoupled(E_a: float, nu_a: float, E_b: float, nu_b: float,
 
 
 @dataclass(frozen=True)
-class Fretting:
+class MindlinDeresiewicz:
     """Scales of one fretting problem: μ, P [N], a [mm], p0 [MPa], δ* [mm], G* [MPa], λ."""
 
     mu: float
@@ -118,7 +118,7 @@ class Fretting:
 
     @classmethod
     def from_hertz(cls, h: hz.Hertz, mu: float, E_a: float, nu_a: float, E_b: float,
-                   nu_b: float) -> Fretting:
+                   nu_b: float) -> MindlinDeresiewicz:
         """From a Hertz solution (:mod:`.hertz`) and the two bodies; K = 0 is required."""
         check_uncoupled(E_a, nu_a, E_b, nu_b)
         G_a, G_b = E_a / (2.0 * (1.0 + nu_a)), E_b / (2.0 * (1.0 + nu_b))
@@ -129,14 +129,14 @@ class Fretting:
 
     @classmethod
     def from_load(cls, P: float, R: float, mu: float, E_a: float, nu_a: float, E_b: float,
-                  nu_b: float) -> Fretting:
+                  nu_b: float) -> MindlinDeresiewicz:
         """Load control: Hertz a, p0 of P (Johnson §4.2)."""
         E_star = 1.0 / ((1.0 - nu_a**2) / E_a + (1.0 - nu_b**2) / E_b)
         return cls.from_hertz(hz.hertz(P, R, E_star), mu, E_a, nu_a, E_b, nu_b)
 
     @classmethod
     def from_approach(cls, approach: float, R: float, mu: float, E_a: float, nu_a: float,
-                      E_b: float, nu_b: float) -> Fretting:
+                      E_b: float, nu_b: float) -> MindlinDeresiewicz:
         """A held normal approach: P = (4/3)E*√R δ_n^(3/2), a = √(R δ_n) (Johnson §4.2)."""
         E_star = 1.0 / ((1.0 - nu_a**2) / E_a + (1.0 - nu_b**2) / E_b)
         return cls.from_hertz(hz.hertz_from_approach(approach, R, E_star), mu, E_a, nu_a,

@@ -71,13 +71,13 @@ def no_solution_reason(case: Case) -> str | None:
     return None
 
 
-def fretting_reference(case: Case) -> fr.Fretting:
+def fretting_reference(case: Case) -> fr.MindlinDeresiewicz:
     """The scales of the case's first fretting cycle: Hertz at the held load or approach,
-    δ* and λ of the pair (:class:`analytic.fretting.Fretting`)."""
+    δ* and λ of the pair (:class:`analytic.fretting.MindlinDeresiewicz`)."""
     a, b, mu = case.a, case.b, case.friction.mu1
     if case.load.P is not None:
-        return fr.Fretting.from_load(case.load.P, case.R, mu, a.E, a.nu, b.E, b.nu)
-    return fr.Fretting.from_approach(case.load.approach, case.R, mu, a.E, a.nu, b.E, b.nu)
+        return fr.MindlinDeresiewicz.from_load(case.load.P, case.R, mu, a.E, a.nu, b.E, b.nu)
+    return fr.MindlinDeresiewicz.from_approach(case.load.approach, case.R, mu, a.E, a.nu, b.E, b.nu)
 
 
 def fretting_steps(case: Case) -> tuple[list[StepResult], dict]:
@@ -152,7 +152,7 @@ def fretting_steps(case: Case) -> tuple[list[StepResult], dict]:
     return [step], {"loops": loops, "cycles": cycles}
 
 
-def _wear_fields(case: Case, ref: fr.Fretting, surface: dict[str, np.ndarray],
+def _wear_fields(case: Case, ref: fr.MindlinDeresiewicz, surface: dict[str, np.ndarray],
                  d: np.ndarray, i_a: float, i_b: float) -> float:
     """Add the first-cycle wear of each body (the gap's :func:`analytic.fretting.cycle_wear`
     in the path frame, split in the ratio of the coefficients) to ``surface`` and the gap;

@@ -43,12 +43,12 @@ def test_constants_agree_with_mindlin_module():
     assert 3 * MU * P / (16 * G_STAR * H.a) == pytest.approx(DSTAR, rel=1e-14)
     assert G_STAR == pytest.approx(G / (2 * (2 - NU)), rel=1e-14)
     assert LAM == pytest.approx(NU / (2 - NU), rel=1e-14)
-    ref = fr.Fretting.from_approach(0.008, R, MU, E, NU, E, NU)
+    ref = fr.MindlinDeresiewicz.from_approach(0.008, R, MU, E, NU, E, NU)
     E_star = E / (2 * (1 - NU**2))
     assert ref.delta_star == pytest.approx(md.gross_slip_shift_from_approach(
         0.008, MU, E_star, G, NU, G, NU), rel=1e-13)
     assert ref.a == pytest.approx(math.sqrt(R * 0.008), rel=1e-14)
-    ref = fr.Fretting.from_load(P, R, MU, E, NU, E, NU)
+    ref = fr.MindlinDeresiewicz.from_load(P, R, MU, E, NU, E, NU)
     assert (ref.a, ref.p0, ref.delta_star) == pytest.approx((H.a, H.p0, DSTAR), rel=1e-14)
     # the stick radius at an amplitude is Cattaneo's at the load amplitude
     for f in (0.1, 0.5, 0.9):
@@ -61,13 +61,13 @@ def test_constants_agree_with_mindlin_module():
 def test_coupled_pairs_are_refused():
     # steel on aluminium: K != 0 (formulation Eq. 6), no closed form
     with pytest.raises(ValueError, match="K = 0"):
-        fr.Fretting.from_load(P, R, MU, E, NU, 70000.0, 0.33)
+        fr.MindlinDeresiewicz.from_load(P, R, MU, E, NU, 70000.0, 0.33)
     fr.check_uncoupled(E, NU, E, NU)
     # dissimilar but uncoupled: (1-2ν)/G equal (ν = 0.5 would be the other way; here
     # E_b chosen to match) -> accepted, with δ* of both bodies
     nu_b = 0.25
     E_b = E * (1 - 2 * nu_b) * (1 + nu_b) / ((1 - 2 * NU) * (1 + NU))
-    ref = fr.Fretting.from_load(P, R, MU, E, NU, E_b, nu_b)
+    ref = fr.MindlinDeresiewicz.from_load(P, R, MU, E, NU, E_b, nu_b)
     G_b = E_b / (2 * (1 + nu_b))
     assert ref.delta_star == pytest.approx(
         md.gross_slip_shift(MU, P, ref.a, G, NU, G_b, nu_b), rel=1e-13)

@@ -119,7 +119,7 @@ def test_no_load_events_under_load_control():
 def test_quick_sweep_gross_slip_at_0_partial_slip_at_90(results):
     case = load_case(CASE, quick=True)[0]
     A, delta_n, nu = case.fretting.amplitude, case.load.approach, case.a.nu
-    star = {mu: afr.Fretting.from_approach(delta_n, case.R, mu, case.a.E, nu, case.b.E,
+    star = {mu: afr.MindlinDeresiewicz.from_approach(delta_n, case.R, mu, case.a.E, nu, case.b.E,
                                            nu).delta_star for mu in (0.1, 0.65)}
     assert star[0.1] < A < star[0.65]  # Mindlin: gross slip at β = 0, partial at 90
     for param, gross in (("beta=0", True), ("beta=90", False)):
@@ -178,7 +178,7 @@ def test_worn_through_under_held_approach():
     assert np.all(cyc["P_min"][:gone] > 0) and np.all(cyc["P_min"][gone:] == 0)
     assert np.all(np.isnan(cyc["gross_slip"][gone:]))  # no regime without contact
     # load lost: the first cycle whose least P is below 1 % of P0 (Hertz at the approach)
-    P0 = afr.Fretting.from_approach(case.load.approach, case.R, 0.1, case.a.E, case.a.nu,
+    P0 = afr.MindlinDeresiewicz.from_approach(case.load.approach, case.R, 0.1, case.a.E, case.a.nu,
                                     case.b.E, case.b.nu).P
     ratio = cyc["P_min"] / (hw.LOAD_LOST_FRACTION * P0)
     assert np.all(np.abs(ratio[ratio > 0] - 1) > 0.1)  # no cycle near the threshold

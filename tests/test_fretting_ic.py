@@ -69,7 +69,7 @@ class Measured:
 
 @functools.cache
 def ic_run(n: int, regime: str, steps: int) -> Measured:
-    ref = fr.Fretting.from_approach(0.008, 50.0, IC_MU, E, NU, E, NU)
+    ref = fr.MindlinDeresiewicz.from_approach(0.008, 50.0, IC_MU, E, NU, E, NU)
     amp = REGIMES[regime] * ref.delta_star
     over = {"grid.nx": n, "grid.ny": n, "friction.mu1": IC_MU, "friction.mu2": IC_MU,
             "friction.beta": 0.0, "fretting.amplitude": amp, "fretting.cycles": 1,
@@ -137,7 +137,7 @@ def test_ic_loop_and_energy_at_the_bundled_grid(regime):
     assert abs(m.dissipation) < tol["dissipation"]
     assert abs(m.energy_table) < 0.02  # the 2 %
     # what is left is the time rule: the MD loop's own trapezoid error at 20 steps
-    ref = fr.Fretting.from_approach(0.008, 50.0, IC_MU, E, NU, E, NU)
+    ref = fr.MindlinDeresiewicz.from_approach(0.008, 50.0, IC_MU, E, NU, E, NU)
     amp = REGIMES[regime] * ref.delta_star
     hist = intended_history(amp, 20, 5)
     trap = fr.loop_area(hist[5:], fr.md_path(hist, IC_MU, ref.P, ref.delta_star)[5:])

@@ -199,7 +199,7 @@ def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: fl
         off = inner & ~kink if tangential else inner
         err = field_errors(fa, fb, l2_mask, scale, ref, max_mask=off)
         if err is not None:
-            rows += [(q, m, err[m]) for m in tol.METRICS[q]]
+            rows += [(q, m, err[m]) for m in tol.QUANTITY_METRICS[q]]
             rows += _kink_row(q, fa, fb, l2_mask, kink if tangential else None, scale, ref)
     return rows
 
@@ -249,7 +249,7 @@ def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
         err = field_errors(fa, fb, mask, p0,
                            max_mask=mask if kink is None else mask & ~kink)
         if err is not None:
-            rows += [(q, m, err[m]) for m in tol.METRICS[q]]
+            rows += [(q, m, err[m]) for m in tol.QUANTITY_METRICS[q]]
             rows += _kink_row(q, fa, fb, mask, kink, p0)
         samples.append(maxima.PlaneSamples(maxima.plane_points(name, ss, zs, x0, y0),
                                            fa.ravel(), fb.ravel(), off.ravel()))

@@ -95,7 +95,7 @@ AREA_SCALARS = ("contact_area", "stick_area")
 TABLE_QUANTITIES = {"loop_q": ("loops", "max"), "energy": ("cycles", "rel")}
 
 #: quantity -> its metrics, in the order rows are written.
-METRICS: dict[str, tuple[str, ...]] = {
+QUANTITY_METRICS: dict[str, tuple[str, ...]] = {
     **{q: ("l2", "max") for q in SURFACE_FIELDS},
     **{q: ("l2", "max") for q in PLANE_FIELDS},
     **{q: ("rel",) for q in REL_SCALARS},
@@ -106,12 +106,12 @@ METRICS: dict[str, tuple[str, ...]] = {
 
 def tolerance_key(quantity: str, metric: str) -> str:
     """The tolerance key of a (quantity, metric): bare for single-metric quantities."""
-    return quantity if len(METRICS[quantity]) == 1 else f"{quantity}_{metric}"
+    return quantity if len(QUANTITY_METRICS[quantity]) == 1 else f"{quantity}_{metric}"
 
 
 #: every valid (pair-less) tolerance key -> (quantity, metric)
 KEYS: dict[str, tuple[str, str]] = {
-    tolerance_key(q, m): (q, m) for q, ms in METRICS.items() for m in ms
+    tolerance_key(q, m): (q, m) for q, ms in QUANTITY_METRICS.items() for m in ms
 }
 
 
@@ -160,9 +160,9 @@ def check_keys(case: Case, solver_names: list[str]) -> None:
                             "([not_converged]); it is not gated, so a tolerance for it is "
                             "meaningless (remove one of the two)")
     for quantity in case.not_converged:
-        if quantity not in METRICS:
+        if quantity not in QUANTITY_METRICS:
             raise CaseError(f"not_converged.{quantity}: unknown quantity (known: "
-                            f"{', '.join(sorted(METRICS))})")
+                            f"{', '.join(sorted(QUANTITY_METRICS))})")
 
 
 #: the ``status`` of a metric row

@@ -154,7 +154,7 @@ def _failure_reason(staging: Path) -> str:
     return "run interrupted or still in progress (no manifest)"
 
 
-def load_case(path: Path, *, verify: bool = True) -> CaseResults:
+def read_case(path: Path, *, verify: bool = True) -> CaseResults:
     """One case directory, every file read (with ``verify``, also the output steps and
     tables); :class:`~reports.registry.errors.IncompleteRun` or :class:`DamagedResult` otherwise."""
     mf = manifest.read(path, verify=verify)
@@ -185,7 +185,7 @@ def scan(out: Path, *, verify: bool = True) -> Scan:
         if path.name.startswith(".") or not layout.looks_like_result(path):
             continue  # not something a run wrote
         try:
-            result.complete.append(load_case(path, verify=verify))
+            result.complete.append(read_case(path, verify=verify))
         except DamagedResult as exc:
             result.damaged[path.name] = str(exc)
         except IncompleteRun as exc:

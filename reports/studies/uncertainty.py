@@ -50,7 +50,7 @@ from reports.studies import convergence
 #: Eça & Hoekstra's factor on the data range of an anomalous (oscillating) study
 RANGE_FACTOR = 3.0
 #: metrics whose tolerance a grid study can set
-METRICS = ("rel",)
+STUDIED_METRICS = ("rel",)
 
 
 def solver_uncertainty(row: Any) -> float:
@@ -105,7 +105,7 @@ def values(metrics: pd.DataFrame, frame: pd.DataFrame | None) -> np.ndarray | No
     u = np.full(len(metrics), math.nan)
     for k in range(len(metrics)):
         metric = str(metrics["metric"].iat[k])
-        if metric in METRICS:
+        if metric in STUDIED_METRICS:
             u[k] = pair_uncertainty(str(metrics["pair"].iat[k]), param.iat[k],
                                     int(metrics["step"].iat[k]),
                                     str(metrics["quantity"].iat[k]), metric, rows)
