@@ -211,7 +211,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         names += [n for n in BUNDLED if n not in missing and n not in names]
     if not names:
         raise UserError("run needs at least one CASE or --all")
-    chosen, skipped = select_solvers(_solver_list(args.solver))
+    chosen, skipped = select_solvers(_solver_list(args.solver), relations=args.quick)
     overrides = _overrides(args.overrides)
     limits = _limits(args)
     plans = [plan_case(n, chosen, quick=args.quick, overrides=overrides, skipped=skipped,
@@ -246,7 +246,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     params = [parse_param(p) for p in args.param]
     if args.workers < 0:
         raise UserError("--workers must be >= 0")
-    chosen, skipped = select_solvers(_solver_list(args.solver))
+    chosen, skipped = select_solvers(_solver_list(args.solver), relations=args.quick)
     plan = plan_sweep(args.case, params, chosen, quick=args.quick,
                       overrides=_overrides(args.overrides), skipped=skipped,
                       limits=_limits(args), explicit=bool(_solver_list(args.solver)))

@@ -7,8 +7,9 @@ original one (:mod:`cases.symmetry`); the pair ``<base>-<base>+<relation>`` (e.g
 allowance, not the base's budget: an exact relation on the same grid allows round-off
 only (the iterations stop at a relative residual of 1e-10), the turn by a non-right
 angle the difference of two discretisations of the same problem, twice the base's
-budget.  Relations run wherever their base runs on a case with orthotropic friction or
-wear, the laws they check (:func:`applies`).
+budget.  Relations run with their base on a case with orthotropic friction or wear, the
+laws they check (:func:`applies`), in the quick tier or when named
+(:func:`reports.run.plan.select_solvers`).
 """
 
 from __future__ import annotations

@@ -133,20 +133,28 @@ class CasePlan:
         return [s for s in self.solvers if solvers.unsupported(s, case) is None]
 
 
-def select_solvers(requested: list[str] | None) -> tuple[list[str], dict[str, str]]:
+def select_solvers(requested: list[str] | None, *, relations: bool = True
+                   ) -> tuple[list[str], dict[str, str]]:
     """(usable solvers, {skipped solver: reason}).
 
     Without an explicit request every registered solver is tried and unavailable ones
-    are skipped; an explicitly requested solver that cannot load is an error.
+    are skipped; an explicitly requested solver that cannot load is an error.  The
+    metamorphic relations of a chosen base solver come with it when ``relations`` (the
+    quick tier: at full size each costs another run of its base) or when named.
     """
     known = solvers.names()
+
+    def wanted(s: str, chosen: list[str]) -> bool:
+        base = solvers.record(s).base
+        return s in chosen or bool(base) and relations and base in chosen
+
     if requested:
         unknown = [s for s in requested if s not in known]
         if unknown:
             raise UserError(f"unknown solver(s) {', '.join(unknown)} (known: {', '.join(known)})")
         for s in requested:
             solvers.resolve(s)  # raises SolverUnavailable with the reason
-        return [s for s in known if s in requested or solvers.record(s).base in requested], {}
+        return [s for s in known if wanted(s, requested)], {}
     usable, skipped = [], {}
     for s in known:
         ok, reason = solvers.available(s)
@@ -156,7 +164,8 @@ def select_solvers(requested: list[str] | None) -> tuple[list[str], dict[str, st
             skipped[s] = reason
     if not usable:
         raise SolverUnavailable("no solver is available: " + "; ".join(skipped.values()))
-    return usable, skipped
+    bases = [s for s in usable if not solvers.record(s).base]
+    return [s for s in usable if wanted(s, bases)], skipped
 
 
 def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
