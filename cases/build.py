@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from .model import (
     Body,
     Case,
@@ -65,7 +67,20 @@ def _grid(d: dict) -> Grid:
     return g  # what the grid costs each solver is its own estimate (reports.run.plan.Limits)
 
 
-def _load(d: dict) -> Load:
+#: the load keys a kind of case has no use for (refused rather than ignored): the path
+#: of a wear run is its own table's ([sliding_wear] slides, [fretting] shifts)
+_UNUSED_LOAD = {"sliding_wear": ("Qx", "Qy", "shift_x", "shift_y"),
+                "fretting": ("Qx", "Qy", "shift_x", "shift_y", "sliding")}
+
+
+def _load(d: dict, kind: str) -> Load:
+    for key in _UNUSED_LOAD.get(kind, ()):
+        if key in d and d[key] is not False:
+            raise CaseError(f"load.{key} = {d[key]!r}: a {kind} case does not use it (its "
+                            f"tangential path is set by [{kind}]); remove it")
+    if kind == "static" and "slide_angle" in d and not d.get("sliding", False):
+        raise CaseError(f"load.slide_angle = {d['slide_angle']!r}: only used with load.sliding "
+                        "= true (a Qx/Qy load or shift_x/shift_y gives its own direction)")
     load = Load(**{k: d[k] for k in d})
     if (load.P is None) == (load.approach is None):
         raise CaseError("load: give exactly one of load.P (N) and load.approach (mm)")
@@ -146,6 +161,9 @@ def _on_jump_grid(cycles: int, jump: float, key: str) -> None:
     """Each simulated cycle stands for ``jump`` cycles: a cycle count the run reports
     must be a whole number of simulated cycles (else its label and its wear differ)."""
     n = cycles / jump
+    if not math.isfinite(n):
+        raise CaseError(f"fretting.jump = {jump!r}: {key} = {cycles} / jump is not a finite "
+                        "number of simulated cycles")
     if n < 1 or abs(n - round(n)) > 1e-9 * n:
         low, high = max(math.floor(n), 1) * jump, max(math.ceil(n), 1) * jump
         raise CaseError(f"{key} = {cycles}: not a whole number of simulated cycles of "
@@ -196,10 +214,10 @@ def build(data: dict, *, name: str, source: str, param: str) -> Case:
     if "load" not in data:
         raise CaseError("[load] is required")
     friction = _friction(data.get("friction", {}))
-    load = _load(data["load"])
+    load = _load(data["load"], kind)
     if load.tangential_mode == "load" and friction.mu1 == 0:
         raise CaseError("load.Qx/Qy need friction (friction.mu or mu1/mu2 > 0)")
-    return Case(
+    case = Case(
         name=name,
         kind=kind,
         a=_body(mats["a"], "a"),
@@ -222,3 +240,27 @@ def build(data: dict, *, name: str, source: str, param: str) -> Case:
         param=param,
         source=source,
     )
+    _check_scales(case)
+    return case
+
+
+def _check_scales(case: Case) -> None:
+    """The Hertz radius a0 and pressure p0 (:attr:`cases.model.Case.hertz_scales`), the
+    scales every solver and table divides by, and the powers the formulas take of them
+    (a0⁴ in the worn-pin radius, p0² in σ_VM²) must be normal finite floats; else the
+    inputs lie outside the domain the formulas are computed in."""
+    load = "load.P" if case.load.P is not None else "load.approach"
+    value = case.load.P if case.load.P is not None else case.load.approach
+    try:
+        scales = case.hertz_scales
+    except (ZeroDivisionError, OverflowError):  # a0 underflowed to 0, or overflowed
+        scales = (0.0, math.nan)
+    with np.errstate(all="ignore"):
+        a0, p0 = (np.float64(v) for v in scales)
+        for name, v, power, unit in (("a0", a0, 4, "mm"), ("p0", p0, 2, "MPa")):
+            if not (np.isfinite(v ** power) and v ** power >= np.finfo(float).tiny):
+                raise CaseError(
+                    f"{load} = {value!r} with geometry.R = {case.R!r}, materials.a.E = "
+                    f"{case.a.E!r}, materials.b.E = {case.b.E!r}: the Hertz {name} = "
+                    f"{float(v):.3g} {unit} is outside the range the formulas compute in "
+                    f"({name}^{power} must be a normal finite float)")

@@ -85,6 +85,9 @@ def _sweep_values(raw: dict, quick: bool, overrides: dict[str, Any]) -> list[Any
     sweep = raw["sweep"]
     if "key" not in sweep or "values" not in sweep or not sweep["values"]:
         raise CaseError("sweep needs 'key' (a dotted key) and a non-empty 'values' list")
+    if sweep["key"].split(".")[0] in NOT_OVERRIDABLE:
+        raise CaseError(f"sweep.key = {sweep['key']!r}: a case's {sweep['key'].split('.')[0]} "
+                        "cannot be swept (name, sweep and quick shape the run, not the case)")
     values, where = sweep["values"], "sweep.values"
     if quick and "sweep.values" in raw.get("quick", {}):
         values, where = raw["quick"]["sweep.values"], "quick.\"sweep.values\""
@@ -115,9 +118,13 @@ def load_case(name_or_path: str | Path, *, quick: bool = False,
     overrides = dict(overrides or {})
     _check_overrides(overrides)
     data = copy.deepcopy({k: v for k, v in raw.items() if k not in ("sweep", "quick", "name")})
+    for key in raw.get("quick", {}):
+        if key.split(".")[0] in NOT_OVERRIDABLE and key != "sweep.values":
+            raise CaseError(f"quick.{key!r}: the quick tier can change the case's keys and "
+                            "\"sweep.values\", not its name, sweep or quick tables")
     if quick:
         for key, value in raw.get("quick", {}).items():
-            if not key.startswith("sweep."):
+            if key != "sweep.values":
                 set_dotted(data, key, value)
     for key, value in overrides.items():
         set_dotted(data, key, value)

@@ -144,6 +144,17 @@ class Fretting:
     jump: float = 1.0  # cycle-jump (wear acceleration) factor
     output_cycles: tuple[int, ...] = ()
 
+    @property
+    def simulated_cycles(self) -> int:
+        """How many cycles are simulated: cycles / jump, a whole number when the case is
+        built (:func:`cases.build._on_jump_grid`; rounded, not cut up: 21 / 1.4 is
+        15.000000000000002 in floats)."""
+        return self.simulated_cycle(self.cycles)
+
+    def simulated_cycle(self, cycle: float) -> int:
+        """The simulated cycle that ends at real cycle ``cycle`` (a whole number of jumps)."""
+        return max(round(cycle / self.jump), 1)
+
     def loading_path(self):
         """The imposed displacements of the initial loading 0 -> +A: q =
         max(steps_per_cycle // 4, 1) equal steps, the start 0 excluded."""

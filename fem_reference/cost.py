@@ -198,7 +198,7 @@ def contact_solves(case: Case, law: str) -> tuple[float, int, int]:
         return n + 1, ITERATIONS["wear"], min(outputs, n + 1)
     if case.kind == "fretting" and case.fretting is not None and law == "friction":
         fr = case.fretting
-        n_sim = max(math.ceil(fr.cycles / fr.jump), 1) if fr.jump > 0 else 1
+        n_sim = fr.simulated_cycles
         per_step = 2 if max(case.a.i1, case.a.i2, case.b.i1, case.b.i2) > 0 else 1
         loading = max(fr.steps_per_cycle // 4, 1)
         outputs = min(len(fr.output_cycles) + 1, n_sim)

@@ -122,8 +122,8 @@ def fretting_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
     case = run.model.case
     fr = case.fretting
     J = fr.jump
-    n_sim = int(math.ceil(fr.cycles / J))
-    out_sim = {int(round(c / J)): c for c in fr.output_cycles if c <= fr.cycles}
+    n_sim = fr.simulated_cycles
+    out_sim = {fr.simulated_cycle(c): c for c in fr.output_cycles if c <= fr.cycles}
     out_sim.setdefault(n_sim, fr.cycles)
     d = slide_direction(case)
     loading, path = fr.loading_path(), fr.cycle_path()
@@ -155,11 +155,11 @@ def fretting_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
                 if abs(abs(u) - fr.amplitude) <= 1e-12 * fr.amplitude:
                     stick_ext.append(stick)
                     contact_ext.append(contact)
-                loops.append((n * J, u, Qx, Qy))
+                loops.append((min(n * J, fr.cycles), u, Qx, Qy))
                 bar.update()
             w_max = float((run.nodes.wear_a + run.nodes.wear_b).max())
             gross = _gross(stick_ext, contact_ext)
-            cycles.append((n * J, abs(energy), min_stick, gross,
+            cycles.append((min(n * J, fr.cycles), abs(energy), min_stick, gross,
                            w_max, stick_ext[0], stick_ext[-1], P_min, contact_min))
             watch.observe(n, gross, min(stick_ext), P_min, contact_min)
             if n in out_sim:

@@ -14,8 +14,6 @@ step.
 
 from __future__ import annotations
 
-import math
-
 from cases.model import Case
 from cases.result import Cost
 
@@ -31,7 +29,7 @@ def contact_solves(case: Case) -> tuple[int, int]:
         return int(round(sw.distance / sw.step)) + 1, max(len(sw.output_s), 1)
     if case.kind == "fretting":
         fr = case.fretting
-        n_sim = math.ceil(fr.cycles / fr.jump)
+        n_sim = fr.simulated_cycles
         return n_sim * fr.steps_per_cycle + fr.steps_per_cycle // 4 + 1, \
             max(len(fr.output_cycles), 1)
     return STATIC_SOLVES, 1

@@ -147,8 +147,8 @@ def fretting(case: Case, progress: bool = False,
     t0 = time.perf_counter()
     fr = case.fretting
     J = fr.jump
-    n_sim = int(np.ceil(fr.cycles / J))
-    out_sim = {int(round(c / J)): c for c in fr.output_cycles if c <= fr.cycles}
+    n_sim = fr.simulated_cycles
+    out_sim = {fr.simulated_cycle(c): c for c in fr.output_cycles if c <= fr.cycles}
     out_sim.setdefault(n_sim, fr.cycles)
     solver, stresses = contact_solver(case), stress_evaluator(case)
     h0 = profile(case)
@@ -177,9 +177,9 @@ def fretting(case: Case, progress: bool = False,
             energy += 0.5 * float((Q + Q_prev) @ d) * (u - u_prev)
             Q_prev, u_prev = Q, u
             seen.see(sol, extreme=abs(abs(u) - fr.amplitude) <= 1e-12 * fr.amplitude)
-            loops.append((n * J, u, sol.Qx, sol.Qy))
+            loops.append((min(n * J, fr.cycles), u, sol.Qx, sol.Qy))
         watch.observe(n, seen)
-        cycles.append(seen.row(n * J, abs(energy), (w_a + w_b).max()))
+        cycles.append(seen.row(min(n * J, fr.cycles), abs(energy), (w_a + w_b).max()))
         if n in out_sim:
             res = step_result(case, sol, stresses, step=n, wear_a=w_a, wear_b=w_b,
                               wall_s=time.perf_counter() - t0, cycle=out_sim[n])

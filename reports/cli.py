@@ -218,9 +218,9 @@ def cmd_run(args: argparse.Namespace) -> int:
                        limits=limits, explicit=bool(_solver_list(args.solver)))
              for n in names]  # validate every case before running
     if args.convergence:
-        from reports.run.study_runs import add_grids
+        from reports.run.study_runs import add_grid_studies
 
-        plans = [add_grids(p, limits) for p in plans]
+        plans = add_grid_studies(plans, limits)
     if args.jump_study:
         plans = _add_jumps(plans, limits)
     seen: dict[str, str] = {}

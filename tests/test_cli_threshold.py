@@ -4,6 +4,7 @@ or cause named)."""
 
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 import pytest
 import test_cli_fakes as fakes
@@ -138,3 +139,16 @@ def test_solver_failures(tmp_path, monkeypatch, capsys):
     assert main([*SLIDING, "--solver", "ic", "--grids", "1", "--out", str(out)]) == 2
     assert ("contact-vv: error: solver ic at friction.mu = 0 on 41x41: the contact area "
             "reaches the edge") in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("resolution", ["1e-300", "5e-324", "1e-17"])
+def test_a_resolution_below_the_float_spacing_ends(tmp_path, capsys, resolution):
+    """The bisection stops at two adjacent floats: about 54 halvings of [0.2, 0.4], not
+    an endless loop."""
+    out = tmp_path / "res"
+    assert main([*SLIDING, "--solver", "analytic", "--grids", "1", "--range", "0.2", "0.4",
+                 "--resolution", resolution, "--out", str(out)]) == 0
+    row = read_result(out / "thresholds.csv", read_thresholds).iloc[-1]
+    assert row["status"].startswith("bisected")
+    assert float(row["hi"]) == np.nextafter(float(row["lo"]), 1.0)
+    assert row["evaluations"] <= 2 + 60

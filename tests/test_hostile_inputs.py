@@ -92,7 +92,7 @@ CASE_FILES = [
     ("tolerance-negative", TINY + "[tolerances]\np_max = -0.1\n", [], 2, "tolerances.p_max"),
     ("tolerance-unknown", TINY + "[tolerances]\nfoo = 0.1\n", [], 2, "unknown tolerance key"),
     ("tolerance-pair", TINY + '[tolerances]\n"ic-ic.p_max" = 0.1\n', [], 2,
-     "is not a solver pair"),
+     "is not a compared pair"),
     ("sweep-no-values", TINY + '[sweep]\nkey = "friction.mu"\nvalues = []\n', [], 2,
      "non-empty 'values'"),
     ("sweep-key-number", TINY + "[sweep]\nkey = 3\nvalues = [1]\n", [], 2, "sweep.key = 3"),

@@ -16,6 +16,7 @@ from cases.result import SLIP, STICK, Plane, RunResult, StepResult, von_mises
 from reports.registry.errors import UserError
 from reports.run import threshold as th
 from reports.studies.events import (
+    MAX_HALVINGS,
     EventOptions,
     EventUndefined,
     NoChange,
@@ -61,6 +62,22 @@ def test_bisection_uses_known_ends_and_refuses_no_change():
         bisect(lambda x: True, 0.0, 1.0, 0.1)
     with pytest.raises(ValueError, match="not an interval"):
         bisect(test, 1.0, 0.0, 0.1)
+
+
+@pytest.mark.parametrize(("lo", "hi", "t0", "resolution"), [
+    (0.0, 1.0, 0.3, 1e-300),  # below the spacing of the floats near 0.3
+    (0.0, 1.0, 0.3, 5e-324),  # the smallest float
+    (-1.7e308, 1.7e308, 1e300, 1e-300),  # a bracket whose width overflows
+    (1.0, 1.0 + 2**-52, 1.0, 1e-300),  # two adjacent floats
+    (0.0, 5e-324 * 4, 5e-324, 5e-324),  # subnormals
+])
+def test_bisection_ends_for_any_resolution(lo, hi, t0, resolution):
+    """A resolution below the bracket's float spacing ends at two adjacent floats (the
+    midpoint is an end) instead of halving forever; the count stays within the bound."""
+    b = bisect(lambda x: x > t0, lo, hi, resolution)
+    assert b.lo <= t0 <= b.hi
+    assert math.nextafter(b.lo, math.inf) == b.hi or b.hi - b.lo <= resolution
+    assert b.evaluations <= 2 + MAX_HALVINGS
 
 
 # ------------------------------------------------------------------ request parsing

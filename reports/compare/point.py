@@ -8,9 +8,8 @@ The verdict on the rows, with a run's studies, is :func:`reports.compare.verdict
 
 from __future__ import annotations
 
-import itertools
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 
 import pandas as pd
 
@@ -23,22 +22,13 @@ from reports.compare.sampling import spacing
 from reports.compare.verdict import EXTRA_COLUMNS, METRICS_COLUMNS, decide
 from reports.registry import solvers
 from reports.registry import tolerances as tol
+from reports.registry.pairs import pairs
 from reports.registry.resolution import Resolution, unresolved
 
 #: metrics written beside a gated one but never gated: -> (the gated metric whose
 #: tolerance they are shown against, why they are not gated)
 _SHOWN = {KINK: ("max", KINK_NOTE), maxima.EDGE: ("rel", maxima.EDGE_NOTE),
           maxima.SURFACE: ("rel", maxima.SURFACE_NOTE)}
-
-
-def pairs(names: Sequence[str]) -> list[tuple[str, str]]:
-    """All pairs in the given order, the second solver of a pair its reference; a
-    metamorphic relation pairs with its base only."""
-    def related(a: str, b: str) -> bool:
-        ra, rb = solvers.record(a).base, solvers.record(b).base
-        return (not ra and not rb) or ra == b or rb == a
-
-    return [(a, b) for a, b in itertools.combinations(names, 2) if related(a, b)]
 
 
 def point_rows(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:

@@ -85,6 +85,7 @@ import pandas as pd
 
 from cases.model import Case, CaseError
 from reports.registry import solvers
+from reports.registry.pairs import pair_names
 
 SURFACE_FIELDS = ("p_n", "p_x", "p_y", "wear_a", "wear_b")
 PLANE_FIELDS = {"vm_xz": "xz", "vm_yz": "yz"}
@@ -146,13 +147,9 @@ def check_keys(case: Case, solver_names: list[str]) -> None:
         if key not in KEYS:
             known = ", ".join(sorted(KEYS))
             raise CaseError(f"tolerances.{raw}: unknown tolerance key {key!r} (known: {known})")
-        if dot:
-            a, dash, b = pair.partition("-")
-            if not dash or a not in solver_names or b not in solver_names or a == b:
-                raise CaseError(
-                    f"tolerances.{raw}: {pair!r} is not a solver pair "
-                    f"(write e.g. \"{'-'.join(solver_names[:2])}.{key}\")"
-                )
+        if dot and pair not in (known := pair_names(solver_names)):
+            raise CaseError(f"tolerances.{raw}: {pair!r} is not a compared pair (the pairs, "
+                            f"in the order compared: {', '.join(known)})")
         if not math.isfinite(case.tolerances[raw]):
             raise CaseError(f"tolerances.{raw}: must be finite")
         if KEYS[key][0] in case.not_converged:
@@ -163,6 +160,10 @@ def check_keys(case: Case, solver_names: list[str]) -> None:
         if quantity not in QUANTITY_METRICS:
             raise CaseError(f"not_converged.{quantity}: unknown quantity (known: "
                             f"{', '.join(sorted(QUANTITY_METRICS))})")
+    if {"vm_max", "vm_max_below"} <= set(case.not_converged):
+        raise CaseError("not_converged: vm_max and vm_max_below both declared: no σ_VM "
+                        "maximum would be gated at all (vm_max_below, the maximum below the "
+                        "surface layer, is the one kept where vm_max does not converge)")
 
 
 #: the ``status`` of a metric row

@@ -4,8 +4,11 @@ of new results from them.
 ``contact-vv gate --update-baseline DIR`` writes ``DIR/<case>.csv`` (one row per case,
 solver, sweep point and output step; the columns of :data:`KEYS`) from the results;
 ``contact-vv gate --baseline DIR`` fails on any key number that drifted from its baseline
-by more than ``--drift`` (relative, default 1e-6) or on a baseline row missing from the
-results.  Updating is always explicit.
+by more than ``--drift`` (relative, default 1e-6), on a baseline row missing from the
+results and on a result row or case missing from the baselines.  A baseline without rows
+or with an infinite number is refused (blank is a number a solver does not give).
+Updating is always explicit, and never into the results directory or over a file that
+is not a baseline.
 """
 
 from __future__ import annotations
@@ -37,14 +40,33 @@ def key_numbers(results: Scan) -> dict[str, pd.DataFrame]:
     return out
 
 
-def write(results: Scan, folder: Path) -> list[Path]:
-    """Write (replace) the baselines of every complete case of ``results``."""
+def write(results: Scan, folder: Path, out: Path) -> list[Path]:
+    """Write (replace) the baselines of every complete case of ``results`` (read from
+    the results directory ``out``).  :class:`UserError`, before writing anything, if
+    ``folder`` is inside ``out`` (a case directory would fail its manifest check, the
+    results directory would hold files no run wrote) or if a file it would replace is
+    not a baseline."""
     from reports.store.write import write_csv
 
     folder = Path(folder)
+    inside = Path(out).resolve()
+    if folder.resolve() == inside or inside in folder.resolve().parents:
+        raise UserError(f"--update-baseline {folder}: inside the results directory {out}; "
+                        "choose a folder outside it")
+    frames = key_numbers(results)
+    for name in frames:
+        path = folder / f"{name}.csv"
+        if path.is_symlink() or path.exists() and not path.is_file():
+            raise UserError(f"{path} is not a regular file; refusing to replace it")
+        if path.exists():
+            try:
+                read_result(path, read_baseline)
+            except DamagedResult as exc:
+                raise UserError(f"{path} exists and is not a baseline ({exc}); refusing "
+                                "to replace it") from None
     folder.mkdir(parents=True, exist_ok=True)
     paths = []
-    for name, frame in key_numbers(results).items():
+    for name, frame in frames.items():
         path = folder / f"{name}.csv"
         write_csv(path, frame)
         paths.append(path)
@@ -56,6 +78,15 @@ def read_baseline(path: Path) -> pd.DataFrame:
     it has, one row per (case, solver, param, step)."""
     frame = read_csv(path, required=INDEX, text=("case", "solver", "param"), numeric=KEYS,
                      integer=["step"])
+    if frame.empty:
+        raise Malformed("no rows (a baseline with nothing in it would pass anything)")
+    for col in [k for k in KEYS if k in frame.columns]:
+        values = frame[col].to_numpy(float)
+        if np.isinf(values).any():  # blank (NaN) is a number a solver does not give
+            r = frame.iloc[int(np.flatnonzero(np.isinf(values))[0])]
+            raise Malformed(f"column {col}: {r[col]} for solver {r['solver']} [{r['param']}] "
+                            f"step {r['step']} is not a finite number (it would hide every "
+                            "drift of the column)")
     dup = frame.duplicated(INDEX)
     if dup.any():
         r = frame[dup].iloc[0]
@@ -91,16 +122,21 @@ def drift(results: Scan, folder: Path, tol: float = DEFAULT_DRIFT) -> list[str]:
     baselines = read(folder)
     current = key_numbers(results)
     lines = []
+    for name in sorted(set(current) - set(baselines)):
+        lines.append(f"DRIFT {name}: in the results but no baseline {folder / name}.csv")
     for name, base in baselines.items():
         path = folder / f"{name}.csv"
         if name not in current:
             lines.append(f"DRIFT {name}: in the baseline {path} but not in the results")
             continue
         cur = current[name]
-        merged = base.merge(cur, on=INDEX, how="left", suffixes=("", "_new"), indicator=True)
+        merged = base.merge(cur, on=INDEX, how="outer", suffixes=("", "_new"), indicator=True)
         for r in merged[merged["_merge"] == "left_only"].itertuples(index=False):
             lines.append(f"DRIFT {name} {r.solver} [{r.param}] step {r.step}: "
                          "baseline row missing from the results")
+        for r in merged[merged["_merge"] == "right_only"].itertuples(index=False):
+            lines.append(f"DRIFT {name} {r.solver} [{r.param}] step {r.step}: "
+                         f"result row missing from the baseline {path}")
         both = merged[merged["_merge"] == "both"]
         for col in [k for k in KEYS if k in base.columns]:
             if f"{col}_new" not in both.columns:

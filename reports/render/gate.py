@@ -1,7 +1,8 @@
 """``contact-vv gate``: print the metrics table; fail on any failed metric (``passed``
 recomputed from value and tolerance; a recorded ``passed`` that disagrees is a problem
-too), non-converged run, incomplete or damaged case, naming each.  Quantities whose grid
-study (``run --convergence``, :mod:`reports.studies.gridstudy`) is not converged are printed as
+too), case with no gated metric, non-converged run, incomplete or damaged case, naming
+each.  Quantities whose grid study (``run --convergence``,
+:mod:`reports.studies.gridstudy`) is not converged are printed as
 ``NOT CONVERGED (grid) …`` notes with their three values; metric rows whose ``status`` is
 "not converged" (declared in the case file or from that study, :mod:`reports.registry.tolerances`)
 are printed as ``NOT GATED …`` notes with their value and reason: neither fails the gate."""
@@ -90,11 +91,15 @@ def case_problems(results: Scan) -> list[str]:
 
 
 def problems(results: Scan) -> list[str]:
-    """One line per failed or inconsistent metric, non-converged run, incomplete and
-    damaged case."""
+    """One line per failed or inconsistent metric, case without a gated metric,
+    non-converged run, incomplete and damaged case."""
     lines = []
     for case in results.complete:
         lines += metric_problems(case)
+        if not gated(case.metrics).any():
+            lines.append(f"NO METRICS {case.name}: {case.path / METRICS} holds no gated "
+                         "comparison, so nothing in it is verified (run it with a second "
+                         "solver, e.g. --solver ic,analytic)")
     for case in results.complete:
         for r in not_converged(case.summary).itertuples(index=False):
             lines.append(f"NOT CONVERGED {_where(case.name, r.param, r.step)} "
@@ -131,7 +136,7 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
         if results.incomplete or results.damaged:
             raise UserError("refusing to update baselines from incomplete or damaged "
                             "results: " + ", ".join([*results.incomplete, *results.damaged]))
-        for path in bl.write(results, update_baseline):
+        for path in bl.write(results, update_baseline, out):
             print(f"baseline written: {path}", file=stream)
         return 0
     found = problems(results)

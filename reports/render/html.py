@@ -10,6 +10,7 @@ from pathlib import Path
 import pandas as pd
 
 from cases.result import atomic_write_text
+from reports.registry.errors import UserError
 from reports.registry.tolerances import GATED
 from reports.render import plots
 from reports.render.gate import metrics_table, problems
@@ -247,12 +248,44 @@ def render(results: Scan, out: Path) -> str:
                f'<p class="bad" id="verdict">Gate: {len(found)} problem(s)</p><ul>'
                + "".join(f"<li>{escape(x)}</li>" for x in found[:50]) + "</ul>")
     return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
-            f"<title>contact-vv report</title><style>{CSS}</style></head><body>"
+            f"{_TITLE}<style>{CSS}</style></head><body>"
             f"<h1>contact-vv verification report</h1><p>Results in <code>{escape(out)}</code>, "
             f"report generated {escape(when)}.</p>{warn}{verdict}"
             f"<nav><h2>Cases</h2><ul>{''.join(toc)}</ul></nav>{thresholds_html(out)}"
             f"{''.join(sections)}"
             "</body></html>")
+
+
+#: the title every report has: an ``index.html`` without it is not one (not replaced)
+_TITLE = "<title>contact-vv report</title>"
+
+
+def _check_replaceable(path: Path) -> None:
+    """UserError if ``path`` exists and is not a report a run of ``report`` wrote."""
+    if not (path.exists() or path.is_symlink()):
+        return
+    if path.is_symlink() or not path.is_file():
+        raise UserError(f"{path} is not a regular file; refusing to replace it (remove it "
+                        "or report another directory)")
+    with open(path, "rb") as fh:
+        head = fh.read(4096)
+    if _TITLE.encode() not in head:
+        raise UserError(f"{path} exists and is not a contact-vv report; refusing to "
+                        "replace it (remove it or report another directory)")
+
+
+def _thresholds_problem(out: Path) -> list[str]:
+    """One line if ``out/thresholds.csv`` exists and cannot be read."""
+    from reports.store.readers import DamagedResult, read_result, read_thresholds
+
+    path = out / layout.THRESHOLDS
+    if not (path.exists() or path.is_symlink()):
+        return []
+    try:
+        read_result(path, read_thresholds)
+    except DamagedResult as exc:
+        return [f"DAMAGED {layout.THRESHOLDS}: {exc}"]
+    return []
 
 
 def write_report(out: Path) -> Path:
@@ -261,7 +294,7 @@ def write_report(out: Path) -> Path:
     Incomplete or damaged cases are listed in the page, and then raised as
     :class:`RunFailed` (one line each, the page written: the CLI exits 1).
     """
-    from reports.registry.errors import RunFailed, UserError
+    from reports.registry.errors import RunFailed
     from reports.render.gate import case_problems
 
     out = Path(out)
@@ -269,9 +302,10 @@ def write_report(out: Path) -> Path:
     if results.empty and not (out / layout.THRESHOLDS).exists():
         raise UserError(f"no results in {out} (run `contact-vv run` first)")
     path = out / layout.REPORT
+    _check_replaceable(path)
     atomic_write_text(path, render(results, out))
-    lines = case_problems(results)
+    lines = case_problems(results) + _thresholds_problem(out)
     if lines:
         raise RunFailed([*lines, f"report {path} written without the {len(lines)} "
-                         "incomplete or damaged case(s) above"])
+                         "incomplete or damaged result(s) above"])
     return path

@@ -21,9 +21,9 @@ import pandas as pd  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
 from cases.result import StepResult  # noqa: E402
-from reports.compare.point import pairs  # noqa: E402
 from reports.compare.sampling import common_axis, sample  # noqa: E402
 from reports.registry import solvers  # noqa: E402
+from reports.registry.pairs import pairs  # noqa: E402
 from reports.store import layout  # noqa: E402
 
 DPI = 80

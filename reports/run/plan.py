@@ -14,6 +14,7 @@ from cases.model import Case, CaseError
 from reports.registry import solvers
 from reports.registry.errors import SolverUnavailable, UserError
 from reports.registry.tolerances import check_keys
+from reports.store import layout
 
 
 def check_fits(case: Case) -> None:
@@ -168,6 +169,23 @@ def select_solvers(requested: list[str] | None, *, relations: bool = True
     return [s for s in usable if wanted(s, bases)], skipped
 
 
+def _check_point_dirs(points: list[Case]) -> None:
+    """Every sweep point must have a field directory of its own
+    (:func:`reports.store.layout.param_dir`), of a length a file system takes."""
+    seen: dict[str, str] = {}
+    for case in points:
+        folder = layout.param_dir(case.param)
+        if folder in seen:
+            raise CaseError(f"sweep.values: the points {seen[folder]!r} and {case.param!r} "
+                            f"would share the field directory {folder}/ (characters other "
+                            "than letters, digits and . _ = + - become _); make the values "
+                            "differ in the characters kept")
+        if len(folder.encode()) > 200:
+            raise CaseError(f"sweep.values: the point {case.param[:60]!r}... is too long to "
+                            "name a directory (at most 200 characters)")
+        seen[folder] = case.param
+
+
 def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
               overrides: dict[str, Any] | None = None, skipped: dict[str, str] | None = None,
               points: list[Case] | None = None, sweep: dict[str, Any] | None = None,
@@ -175,7 +193,7 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
               explicit: bool = True) -> CasePlan:
     """Load and validate a case (``CaseError`` on bad input, or a unit beyond the
     ``limits``) and plan its runs (the grid studies of ``run --convergence`` are added by
-    :func:`reports.studies.gridstudy.add_grids`).  ``explicit``: the solvers were named by the
+    :func:`reports.run.study_runs.add_grids`).  ``explicit``: the solvers were named by the
     user; otherwise a solver that runs on a case only on request
     (:func:`reports.registry.solvers.not_by_default`) is left out with its reason."""
     source = case_path(ref)
@@ -187,6 +205,7 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
         check_fits(case)
         if (w := grid_warning(case)) is not None:
             warnings.append(w)
+    _check_point_dirs(points)
     name = points[0].name
     plan = CasePlan(name=name, source=source, points=points, solvers=list(solver_names),
                     skipped=dict(skipped or {}), quick=quick, overrides=dict(overrides or {}),
@@ -201,6 +220,10 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
             if reason is not None:
                 plan.skipped[s] = reason
                 plan.solvers.remove(s)
+    if not plan.units():  # a run of nothing would write an empty case that gates nothing
+        why = "; ".join(f"{s}: {r}" for s, r in plan.skipped.items() if s in solver_names)
+        raise CaseError(f"{source}: none of the solvers {', '.join(solver_names)} runs this "
+                        f"case ({why or 'no solver chosen'})")
     limits = limits or Limits()
     for i, s in plan.units():
         limits.check(points[i], s)

@@ -183,9 +183,13 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     t0 = time.perf_counter()
     sources = manifest.source_hashes()
     final = layout.case_dir(out, plan.dir_name)
-    if final.exists() and not (final.is_dir() and layout.only_own_files(final)):
-        raise UserError(f"{final} exists and is not a contact-vv result; refusing to replace "
-                        "it (choose another --out)")
+    if final.exists() or final.is_symlink():
+        mine = final.is_dir() and not final.is_symlink()
+        other = layout.foreign(final) if mine else final
+        if other is not None:
+            raise UserError(f"{final} exists and is not a contact-vv result ({other} is not "
+                            "a file a run writes); refusing to replace it (choose another "
+                            "--out)")
     staging = claim_staging(out, plan.dir_name)
     plan.staging = staging
     remove_dir(final)  # an older result must not outlive a newer, failing run

@@ -51,6 +51,20 @@ def add_grids(plan: CasePlan, limits: Limits | None = None) -> CasePlan:
     return plan
 
 
+def add_grid_studies(plans: list[CasePlan], limits: Limits | None) -> list[CasePlan]:
+    """``plans`` with their grid studies (:func:`add_grids`); UserError if no run has a
+    grid to refine (closed forms only: the flag would do nothing)."""
+    from reports.registry.errors import UserError
+
+    plans = [add_grids(p, limits) for p in plans]
+    if not any(p.grids for p in plans):
+        names = sorted({s for p in plans for _, s in p.units()})
+        raise UserError(f"--convergence: no run has a grid to refine (solver(s) "
+                        f"{', '.join(names)}: closed forms have none); add a numerical "
+                        "solver, e.g. --solver ic")
+    return plans
+
+
 def plan_grids(plan: CasePlan, limits: Limits | None = None) -> list[GridRun]:
     """The coarse runs of the grid studies of ``plan``, validated like the case itself
     (contact within the grid, solver support, limits): ``CaseError`` naming the grid."""

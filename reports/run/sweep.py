@@ -14,6 +14,7 @@ client exactly as a serial run writes them, so the numbers are identical.
 
 from __future__ import annotations
 
+import json
 import math
 import tempfile
 import time
@@ -72,8 +73,8 @@ def _toml_value(value: Any) -> str:
         return "true" if value else "false"
     if isinstance(value, int | float):
         return repr(value)
-    if isinstance(value, str):
-        return '"' + value.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    if isinstance(value, str):  # a JSON string is a TOML basic string, but for U+007F
+        return json.dumps(value, ensure_ascii=False).replace("\x7f", "\\u007f")
     if isinstance(value, list | tuple):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
     raise CaseError(f"cannot write {value!r} to TOML")
@@ -198,6 +199,9 @@ class DaskExecutor:
             except OSError as exc:
                 raise UserError(f"cannot reach the Dask scheduler {self.scheduler}: {exc}") \
                     from None
+            except (ValueError, TypeError) as exc:  # Dask's parse of the address
+                raise UserError(f"--scheduler {self.scheduler!r}: not a Dask scheduler "
+                                f"address, e.g. tcp://127.0.0.1:8786 ({exc})") from None
         else:
             import dask
 

@@ -33,6 +33,7 @@ from cases.model import Case, CaseError
 from cases.schema import SCHEMA, read_toml
 from reports.registry import solvers
 from reports.registry.errors import UserError
+from reports.registry.tolerances import check_keys
 from reports.run.plan import Limits, check_fits
 from reports.studies import events
 from reports.studies.events import EventOptions, EventUndefined, Exact, bisect, event
@@ -236,6 +237,8 @@ def make_units(request: Request, log: Callable[[str], None] | None = None) -> li
                                overrides={**request.overrides, request.param: value})
         except CaseError as exc:
             raise CaseError(f"--param {request.param} = {value:g}: {exc}") from None
+    for case in points:  # the keys a run would refuse (a --set typo), refused here too
+        check_keys(case, solvers.names())
     reason = event(request.event).applies(points[0])
     if reason is not None:
         raise UserError(reason)

@@ -17,6 +17,7 @@ from reports.registry.errors import UserError
 from reports.run.threshold import COLUMNS, Request
 from reports.store.layout import THRESHOLDS
 from reports.store.readers import MERGE_KEYS, DamagedResult, read_result, read_thresholds
+from reports.store.staging import open_lock
 from reports.store.write import write_csv
 
 
@@ -66,15 +67,24 @@ def stderr_log(message: str) -> None:
 @contextmanager
 def _locked(path: Path) -> Iterator[None]:
     """Hold an exclusive OS lock on ``path`` (waiting for another threshold run)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    with open(path, "a+") as fh:
+    with open_lock(path) as fh:
         fcntl.flock(fh, fcntl.LOCK_EX)
         yield
 
 
+def _lock_path(out: Path) -> Path:
+    return Path(out) / f".{THRESHOLDS}.lock"
+
+
 def existing(out: Path) -> pd.DataFrame | None:
-    """The rows of ``out/thresholds.csv`` (None if absent); UserError if it is damaged."""
-    if not (Path(out) / THRESHOLDS).exists():
+    """The rows of ``out/thresholds.csv`` (None if absent); UserError if it is damaged
+    or not a regular file (a link would be replaced by the table)."""
+    path = Path(out) / THRESHOLDS
+    for p in (path, _lock_path(out)):
+        if p.is_symlink() or p.exists() and not p.is_file():
+            raise UserError(f"{p} is not a regular file; refusing to replace it (move it "
+                            "away)")
+    if not path.exists():
         return None
     try:
         return read_result(Path(out) / THRESHOLDS, read_thresholds)
@@ -86,7 +96,7 @@ def write_rows(out: Path, rows: list[dict[str, Any]]) -> Path:
     """Merge ``rows`` into ``out/thresholds.csv`` (rows of the same case, point, event,
     param, step, tier, solver and grid replaced) and write it atomically."""
     new = pd.DataFrame.from_records(rows, columns=COLUMNS)
-    with _locked(Path(out) / f".{THRESHOLDS}.lock"):
+    with _locked(_lock_path(out)):
         old = existing(out)
         if old is not None:
             key = set(new[MERGE_KEYS].astype(str).agg("|".join, axis=1))

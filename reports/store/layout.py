@@ -31,6 +31,7 @@ manifest is written, so a case directory is either complete or absent.
 from __future__ import annotations
 
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 MANIFEST = "manifest.json"
@@ -94,9 +95,47 @@ def looks_like_result(path: Path) -> bool:
     return Path(path).is_dir() and any((Path(path) / n).exists() for n in OWN_NAMES)
 
 
-def only_own_files(path: Path) -> bool:
-    """Whether every entry of a directory is something a run writes (safe to replace)."""
-    return all(p.name in OWN_NAMES or p.name.startswith(".") for p in Path(path).iterdir())
+#: what a run writes into fields/<solver>/<param>/: output steps and their meshes (.npz,
+#: .vtu) and solver tables (.csv), named by :func:`safe_name`
+_FIELD_FILE = re.compile(r"[A-Za-z0-9._=+-]+\.(npz|vtu|csv)")
+#: the temporary of an atomic write of file NAME (cases.result.atomic_path, tempfile's
+#: eight random characters) that a crash left behind
+_TEMPORARY = re.compile(r"\.(?P<name>.+)\.[a-z0-9_]{8}\.part")
+
+
+def _own_file(name: str, own: Callable[[str], bool]) -> bool:
+    """Whether ``name`` is a file the run writes (``own``) or the temporary of one."""
+    m = _TEMPORARY.fullmatch(name)
+    return own(m.group("name") if m else name)
+
+
+def foreign(root: Path, extra: frozenset[str] = frozenset()) -> Path | None:
+    """The first path below ``root`` that a run did not write, None when every entry is a
+    run's: a symbolic link anywhere; at the top a name other than :data:`OWN_NAMES` (and
+    ``extra``); under ``fields/`` anything but directories ``<solver>/<param>/`` of step
+    files, meshes and tables.  Temporaries of the atomic writes of those count as the
+    run's.  Links are never followed."""
+    def plain_dir(p: Path) -> bool:
+        return p.is_dir() and not p.is_symlink()
+
+    def plain_file(p: Path, own: Callable[[str], bool]) -> bool:
+        return p.is_file() and not p.is_symlink() and _own_file(p.name, own)
+
+    top_names = (OWN_NAMES | extra) - {FIELDS}
+    for top in sorted(Path(root).iterdir()):
+        if top.name == FIELDS and plain_dir(top):
+            for solver in sorted(top.iterdir()):
+                if not plain_dir(solver):
+                    return solver
+                for point in sorted(solver.iterdir()):
+                    if not plain_dir(point):
+                        return point
+                    for f in sorted(point.iterdir()):
+                        if not plain_file(f, _FIELD_FILE.fullmatch):
+                            return f
+        elif not plain_file(top, top_names.__contains__):
+            return top
+    return None
 
 
 def partial_case_name(path: Path) -> str | None:

@@ -161,9 +161,28 @@ def read_case(path: Path, *, verify: bool = True) -> CaseResults:
     case = CaseResults(path=path, manifest=mf,
                        summary=read_result(path / layout.SUMMARY, read_summary),
                        metrics=read_result(path / layout.METRICS, read_metrics))
+    _check_units(case)
     if verify:
         case.check_files()
     return case
+
+
+def _check_units(case: CaseResults) -> None:
+    """IncompleteRun if the manifest lists no unit, or a unit that ran without a row in
+    the summary (a run, or a hand edit, that dropped a solver's results)."""
+    units = case.manifest.get("units")
+    if units is None:  # a manifest from before units were recorded
+        return
+    if not units:
+        raise IncompleteRun(f"{case.path}: the manifest lists no solver run")
+    have = set(zip(case.summary["solver"].astype(str),
+                   case.summary["param"].fillna("").astype(str), strict=True))
+    for u in units:
+        key = (str(u.get("solver")), str(u.get("param") or ""))
+        if u.get("ok", True) and key not in have:
+            raise IncompleteRun(f"{case.path}: solver {key[0]}"
+                                + (f" [{key[1]}]" if key[1] else "")
+                                + f" ran but has no row in {layout.SUMMARY}")
 
 
 def scan(out: Path, *, verify: bool = True) -> Scan:

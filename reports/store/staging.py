@@ -14,6 +14,7 @@ from __future__ import annotations
 import fcntl
 import os
 import shutil
+import stat
 import sys
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -30,8 +31,7 @@ _STAGING_EXTRA = frozenset({layout.FAILED, ".pid"})
 def case_lock(out: Path, name: str) -> Iterator[Path]:
     """Hold the lock of case ``name`` in ``out`` (UserError if another run holds it)."""
     path = layout.lock_file(out, name)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fh = open(path, "a+")
+    fh = open_lock(path)
     try:
         try:
             fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
@@ -49,17 +49,33 @@ def case_lock(out: Path, name: str) -> Iterator[Path]:
         fh.close()  # closing releases the lock
 
 
+def open_lock(path: Path):
+    """A lock file opened for reading and writing, created if absent, never through a
+    symbolic link (UserError naming it: the run would write its pid into the target)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    try:
+        fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o666)
+    except OSError as exc:
+        raise UserError(f"{path}: cannot be used as a lock file ({exc.strerror}"
+                        + ("; it is a symbolic link" if path.is_symlink() else "")
+                        + "); remove it or choose another --out") from None
+    if not stat.S_ISREG(os.fstat(fd).st_mode):
+        os.close(fd)
+        raise UserError(f"{path}: not a regular file; remove it or choose another --out")
+    return os.fdopen(fd, "r+")
+
+
 def _ours(path: Path) -> bool:
-    """Whether a staging directory holds only what a run writes into one."""
-    return all(p.name in layout.OWN_NAMES or p.name in _STAGING_EXTRA
-               or p.name.startswith(".") for p in path.iterdir())
+    """Whether a staging directory holds only what a run writes into one, at any depth
+    (:func:`reports.store.layout.foreign`)."""
+    return layout.foreign(path, _STAGING_EXTRA) is None
 
 
 def claim_staging(out: Path, name: str) -> Path:
     """Create a fresh staging directory for ``name`` (the caller holds the case's lock)."""
     staging = layout.staging_dir(out, name)
-    if staging.exists():
-        if not (staging.is_dir() and _ours(staging)):
+    if staging.exists() or staging.is_symlink():
+        if staging.is_symlink() or not (staging.is_dir() and _ours(staging)):
             raise UserError(f"{staging} exists and is not a contact-vv staging directory; "
                             "refusing to remove it (choose another --out)")
         kept = sum(1 for _ in staging.rglob("step_*.npz"))

@@ -141,10 +141,16 @@ class Bisection:
         return 0.5 * (self.hi - self.lo)
 
 
+#: at most this many halvings: 2^-1100 of any finite bracket is below the smallest float
+MAX_HALVINGS = 1100
+
+
 def bisect(test: Callable[[float], bool], lo: float, hi: float, resolution: float, *,
            at_lo: bool | None = None, at_hi: bool | None = None) -> Bisection:
     """Halve [lo, hi] until it is at most ``resolution`` wide, keeping ``test`` different
-    at its ends; ``at_lo``/``at_hi`` are the end values if already known.
+    at its ends, or until no float lies between them (a resolution below the bracket's
+    float spacing: the returned interval is then wider than asked); ``at_lo``/``at_hi``
+    are the end values if already known.
     :class:`NoChange` if ``test`` is the same at both ends."""
     if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
         raise ValueError(f"bracket [{lo}, {hi}] is not an interval")
@@ -157,8 +163,17 @@ def bisect(test: Callable[[float], bool], lo: float, hi: float, resolution: floa
         at_hi, count = bool(test(hi)), count + 1
     if at_lo == at_hi:
         raise NoChange(f"the event is {at_lo} at both ends of [{lo:g}, {hi:g}]")
-    while hi - lo > resolution * (1 + 1e-9):
-        mid = 0.5 * (lo + hi)
+    # halvings to the resolution, and never past the floats between lo and hi: a
+    # resolution below their spacing ends where the midpoint is an end (MAX_HALVINGS)
+    ratio = (hi - lo) / resolution
+    steps = MAX_HALVINGS if not math.isfinite(ratio) else \
+        min(max(math.ceil(math.log2(ratio)), 0), MAX_HALVINGS)
+    for _ in range(steps):
+        if hi - lo <= resolution * (1 + 1e-9):
+            break
+        mid = 0.5 * lo + 0.5 * hi  # = 0.5 (lo + hi), which can overflow
+        if not lo < mid < hi:  # the float spacing of the bracket: no narrower interval
+            break
         if bool(test(mid)) == at_lo:
             lo = mid
         else:
