@@ -170,6 +170,9 @@ class Cost:
     seconds: float
     memory_keys: tuple[str, ...] = ()
     time_keys: tuple[str, ...] = ()
+    #: the calibration of ``seconds``: measured wall times lie within this factor of it
+    #: (a run past it has gone wrong: reports.run.deadline); inf: not calibrated
+    time_factor: float = math.inf
 
 
 # ---------------------------------------------------------------- atomic files

@@ -48,6 +48,9 @@ SECONDS_DENSE = 1.2e-10  # times m³ (C_rel Cholesky, K_rel)
 SECONDS_CONTACT = 1.1e-10  # times A³ per Newton iteration (A DOFs in contact)
 SECONDS_CONTACT_M2 = 2e-9  # times m² per Newton iteration (dense products, line search)
 SECONDS_OUTPUT = 0.3  # per output step (recovery, stress planes, .vtu)
+#: the calibration of the time estimate: the calibration runs' wall times lie within
+#: this factor of it (benchmarks/README.md, tests/test_fem_cost.py)
+TIME_FACTOR = 2.0
 ITERATIONS = {"single": 5, "friction": 10, "wear": 3}
 
 _PANELS_MAX = 40  # geometric panels beyond the refined zone
@@ -315,4 +318,4 @@ def estimate(case: Case) -> Cost:
     b = breakdown(case)
     memory_keys, time_keys = _drivers(case, b)
     return Cost(memory=b.peak, seconds=b.total_seconds, memory_keys=memory_keys,
-                time_keys=time_keys)
+                time_keys=time_keys, time_factor=TIME_FACTOR)

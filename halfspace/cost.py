@@ -9,7 +9,9 @@ of the cycle, and the loop tables grow with the simulated steps.
 Time: contact solves x cells x a per-cell cost measured on this project's runs (4.8e-6 s
 for a frictional pin-on-disk step on 81², 4e-5 s for a partial-slip fretting step on 61²;
 2e-5 s is used, an order-of-magnitude figure), plus the stress planes of every output
-step.
+step.  Its calibration, :data:`TIME_FACTOR`: the wall times of the test suite's and the
+quick chain's runs lie within that factor of the estimate (benchmarks/README.md, "The
+cost estimates' calibration").
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from cases.result import Cost
 SECONDS_PER_CELL_SOLVE = 2e-5
 SECONDS_PER_CELL_LAYER = 2e-7  # one plane pair's stresses, per cell and depth layer
 STATIC_SOLVES = 11  # normal and tangential load increments of a static case (at most)
+TIME_FACTOR = 10.0  # measured wall times lie within this factor of the estimate
 
 
 def contact_solves(case: Case) -> tuple[int, int]:
@@ -59,6 +62,6 @@ def estimate(case: Case) -> Cost:
     memory = sum(terms.values())
     drivers = sorted((t for t in terms if terms[t] >= 0.1 * memory), key=terms.get,
                      reverse=True)
-    return Cost(memory=memory, seconds=solve_s + stress_s,
+    return Cost(memory=memory, seconds=solve_s + stress_s, time_factor=TIME_FACTOR,
                 memory_keys=tuple(dict.fromkeys(k for t in drivers for k in t)),
                 time_keys=time_keys + ("grid.nx", "grid.ny"))

@@ -82,6 +82,9 @@ def build_parser() -> argparse.ArgumentParser:
             p.add_argument("--max-hours", type=float, default=48.0, metavar="H",
                            help="wall time one solver run may take by its estimate "
                            "(default: 48)")
+            p.add_argument("--time-factor", type=float, default=1.0, metavar="X",
+                           help="this machine's slowness against the estimates' (scales "
+                           "--max-hours checks and each run's deadline; default 1)")
 
     run = sub.add_parser("run", help="run cases through the solvers")
     run.add_argument("cases", nargs="*", metavar="CASE", help="bundled case name or TOML path")
@@ -195,7 +198,7 @@ def _report_runs(runs, out: Path) -> int:
 def _limits(args: argparse.Namespace):
     from reports.run.plan import Limits
 
-    return Limits.from_flags(args.max_memory, args.max_hours)
+    return Limits.from_flags(args.max_memory, args.max_hours, args.time_factor)
 
 
 def cmd_run(args: argparse.Namespace) -> int:

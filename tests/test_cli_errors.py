@@ -29,7 +29,7 @@ def cli(*argv: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
     (lambda t: t.replace("P = 10.2", "P = -10.2"), "load.P = -10.2"),
     (lambda t: t.replace("Lx = 1.6", "Lx = 0.2"), "grid.Lx = 0.2 mm: the expected contact"),
     (lambda t: t + "[tolerances]\np_maxx = 0.1\n", "unknown tolerance key 'p_maxx'"),
-    (lambda t: t + '[tolerances]\n"ic-fm.p_max" = 0.1\n', "'ic-fm' is not a solver pair"),
+    (lambda t: t + '[tolerances]\n"ic-fm.p_max" = 0.1\n', "'ic-fm' is not a compared pair"),
     (lambda t: t.replace("nx = 21", "nx = 21.5"), "grid.nx = 21.5: must be an integer"),
     (lambda t: t.replace("[load]", "[load"), "malformed TOML"),
 ])

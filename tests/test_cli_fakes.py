@@ -189,3 +189,10 @@ def use(monkeypatch, **targets: str) -> None:
     from reports.registry import solvers
 
     monkeypatch.setattr(solvers, "REGISTRY", registry(**targets))
+
+
+def estimate_tiny(case: Case):
+    """A calibrated estimate far below what :func:`solve_slow` takes (deadline tests)."""
+    from cases.result import Cost
+
+    return Cost(memory=1e6, seconds=0.01, time_factor=1.0)

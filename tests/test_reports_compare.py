@@ -224,8 +224,8 @@ def test_tolerance_lookup_order_and_defaults():
 
 @pytest.mark.parametrize(("key", "needle"), [
     ("p_mx", "unknown tolerance key 'p_mx'"),
-    ("ic-fm.p_max", "'ic-fm' is not a solver pair"),
-    ("ic-ic.p_max", "'ic-ic' is not a solver pair"),
+    ("ic-fm.p_max", "'ic-fm' is not a compared pair"),
+    ("ic-ic.p_max", "'ic-ic' is not a compared pair"),
     ("p_n", "unknown tolerance key 'p_n'"),  # p_n has two metrics: p_n_l2 / p_n_max
 ])
 def test_bad_tolerance_keys_are_named(key, needle):

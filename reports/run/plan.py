@@ -14,6 +14,7 @@ from cases.model import Case, CaseError
 from reports.registry import solvers
 from reports.registry.errors import SolverUnavailable, UserError
 from reports.registry.tolerances import check_keys
+from reports.run import deadline
 from reports.store import layout
 
 
@@ -73,15 +74,25 @@ class Limits:
 
     memory: float | None = None
     hours: float = 48.0
+    slowdown: float = 1.0  # --time-factor: the machine against the estimates' own
 
     @classmethod
-    def from_flags(cls, max_memory: float | None, max_hours: float) -> Limits:
-        """From ``--max-memory`` [GiB] and ``--max-hours``; UserError unless positive."""
-        for flag, value in (("--max-memory", max_memory), ("--max-hours", max_hours)):
+    def from_flags(cls, max_memory: float | None, max_hours: float,
+                   time_factor: float = 1.0) -> Limits:
+        """From ``--max-memory`` [GiB], ``--max-hours`` and ``--time-factor``; UserError
+        unless positive."""
+        for flag, value in (("--max-memory", max_memory), ("--max-hours", max_hours),
+                            ("--time-factor", time_factor)):
             if value is not None and not (math.isfinite(value) and value > 0):
                 raise UserError(f"{flag} must be a positive number")
         return cls(memory=None if max_memory is None else max_memory * 2**30,
-                   hours=max_hours)
+                   hours=max_hours, slowdown=time_factor)
+
+    def deadline(self, case: Case, solver: str) -> float:
+        """How long ``solver`` may run on ``case`` (:mod:`reports.run.deadline`)."""
+        cost = solvers.estimate(solver, case)
+        return math.inf if cost is None else \
+            deadline.seconds(cost.seconds, cost.time_factor, self.slowdown)
 
     def check(self, case: Case, solver: str) -> None:
         """CaseError naming the keys to change when ``solver``'s estimate for ``case``
@@ -98,9 +109,10 @@ class Limits:
                 f"{where}: solver {solver} would need about {cost.memory / 2**30:.3g} GiB "
                 f"(limit {memory / 2**30:.3g} GiB, {source}); reduce "
                 f"{', '.join(cost.memory_keys)} (or set --max-memory)")
-        if cost.seconds > 3600.0 * self.hours:
+        if self.slowdown * cost.seconds > 3600.0 * self.hours:
             raise CaseError(
-                f"{where}: solver {solver} would run for about {cost.seconds / 3600:.3g} h "
+                f"{where}: solver {solver} would run for about "
+                f"{self.slowdown * cost.seconds / 3600:.3g} h "
                 f"(limit {self.hours:g} h); reduce {', '.join(cost.time_keys)} (or set "
                 "--max-hours)")
 
@@ -124,6 +136,7 @@ class CasePlan:
     jump_study: bool = False  # run --jump-study: cycle-jump studies (reports.studies.jumpstudy)
     jumps: list[Any] = field(default_factory=list)  # their runs at J/2, J/4 (GridRun)
     warnings: list[str] = field(default_factory=list)  # said before any work (grid_warning)
+    limits: Limits = field(default_factory=Limits)  # memory, time, deadlines
 
     def units(self) -> list[tuple[int, str]]:
         """(point index, solver) pairs to run, point-major, solvers in registry order."""
@@ -224,7 +237,7 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
         why = "; ".join(f"{s}: {r}" for s, r in plan.skipped.items() if s in solver_names)
         raise CaseError(f"{source}: none of the solvers {', '.join(solver_names)} runs this "
                         f"case ({why or 'no solver chosen'})")
-    limits = limits or Limits()
+    limits = plan.limits = limits or Limits()
     for i, s in plan.units():
         limits.check(points[i], s)
     return plan

@@ -223,6 +223,10 @@ class DaskExecutor:
 
     def __call__(self, plan: CasePlan, units: list[tuple[int, str]],
                  progress: bool) -> Iterator[UnitOutcome]:
+        """The outcomes as the tasks finish; the tasks not done by the sum of their
+        deadlines (:mod:`reports.run.deadline`, as if run one after the other) are
+        cancelled and reported as stopped."""
+        from distributed import TimeoutError as DaskTimeout
         from distributed import as_completed
 
         fns = {s: solvers.resolve(s) for s in {s for _, s in units}}
@@ -230,9 +234,21 @@ class DaskExecutor:
         futures = [self.client.submit(run_unit, fns[s], plan.points[i], s, i, False,
                                       pure=False, key=f"{plan.dir_name}-{i}-{s}-{tag}")
                    for i, s in units]
+        limit = sum(plan.limits.deadline(plan.points[i], s) for i, s in units)
+        done: set[tuple[int, str]] = set()
         try:
-            for future in as_completed(futures):
-                yield future.result()
+            for future in as_completed(futures, timeout=limit if math.isfinite(limit)
+                                       else None):
+                outcome = future.result()
+                done.add((outcome.index, outcome.solver))
+                yield outcome
+        except DaskTimeout:
+            for i, s in units:
+                if (i, s) not in done:
+                    yield UnitOutcome(i, s, plan.points[i].param, None, limit, kind="overrun",
+                                      error=f"the sweep's tasks ran past their deadline of "
+                                      f"{limit:.3g} s (the sum of their cost estimates times "
+                                      "their calibration factors); stopped")
         finally:
             for future in futures:
                 future.cancel()

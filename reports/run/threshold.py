@@ -34,6 +34,7 @@ from cases.schema import SCHEMA, read_toml
 from reports.registry import solvers
 from reports.registry.errors import UserError
 from reports.registry.tolerances import check_keys
+from reports.run.deadline import deadline
 from reports.run.plan import Limits, check_fits
 from reports.studies import events
 from reports.studies.events import EventOptions, EventUndefined, Exact, bisect, event
@@ -161,7 +162,9 @@ class Unit:
         case = self.case(value)
         t0 = time.perf_counter()
         try:
-            result = solvers.resolve(self.solver)(case, progress=False, on_output=None)
+            with deadline((r.limits or Limits()).deadline(case, self.solver),
+                          f"the run at {r.param} = {value:g}"):
+                result = solvers.resolve(self.solver)(case, progress=False, on_output=None)
         except CaseError as exc:  # e.g. the contact reaches the grid edge: a user error
             where = f" [{self.point_label}]" if self.point_label else ""
             raise CaseError(f"solver {self.solver}{where} at {r.param} = {value:g} on "

@@ -16,6 +16,7 @@ import numpy as np
 from cases.model import Case, CaseError
 from cases.result import RunResult, StepResult, save_step, vm_max_below
 from reports.registry import solvers
+from reports.run.deadline import Overrun, deadline
 from reports.run.plan import CasePlan
 from reports.store import layout
 
@@ -30,7 +31,9 @@ class UnitOutcome:
     result: RunResult | None
     wall_s: float
     error: str = ""
-    kind: str = ""  # '' | 'case' (bad input) | 'solver' (did not converge) | 'internal'
+    #: '' | 'case' (bad input) | 'solver' (did not converge) | 'overrun' (past its
+    #: deadline) | 'internal'
+    kind: str = ""
     detail: str = ""
     cell_size: float = math.nan  # the solver's representative cell size [mm]
     steps_written: int = 0  # output steps already saved as they were computed
@@ -79,18 +82,24 @@ class StepWriter:
 
 def run_unit(fn: Callable[..., RunResult], case: Case, solver: str, index: int,
              progress: bool = False,
-             on_output: Callable[[StepResult], None] | None = None) -> UnitOutcome:
+             on_output: Callable[[StepResult], None] | None = None,
+             limit_s: float = math.inf) -> UnitOutcome:
     """Run one solver on one sweep point; failures are captured, never raised.
-    ``on_output`` receives each output step as soon as the solver has it."""
+    ``on_output`` receives each output step as soon as the solver has it; the run is
+    stopped after ``limit_s`` seconds (:mod:`reports.run.deadline`)."""
     t0 = time.perf_counter()
     try:
-        result = fn(case, progress=progress, on_output=on_output)
+        with deadline(limit_s, "the run"):
+            result = fn(case, progress=progress, on_output=on_output)
         if not isinstance(result, RunResult) or not result.steps:
             raise RuntimeError(f"returned {type(result).__name__} without output steps")
         _check_finite(result, solver)
     except CaseError as exc:
         return UnitOutcome(index, solver, case.param, None, time.perf_counter() - t0,
                            error=str(exc), kind="case")
+    except Overrun as exc:
+        return UnitOutcome(index, solver, case.param, None, time.perf_counter() - t0,
+                           error=str(exc), kind="overrun")
     except RuntimeError as exc:
         return UnitOutcome(index, solver, case.param, None, time.perf_counter() - t0,
                            error=str(exc), kind="solver", detail=traceback.format_exc())
@@ -121,7 +130,7 @@ def derive(step: StepResult, case: Case) -> None:
 def failure_line(case: str, outcome: UnitOutcome) -> str:
     where = f"{case}" + (f" [{outcome.param}]" if outcome.param else "")
     what = {"case": "rejected the case", "solver": "did not converge",
-            "internal": "crashed"}.get(outcome.kind, "failed")
+            "overrun": "was stopped", "internal": "crashed"}.get(outcome.kind, "failed")
     return f"{where}: solver {outcome.solver} {what}: {outcome.error}"
 
 
@@ -133,6 +142,7 @@ def serial_executor(plan: CasePlan, units: list[tuple[int, str]],
     for i, s in units:
         case = plan.points[i]
         writer = StepWriter(plan.staging, s, case.param, case) if plan.staging else None
-        outcome = run_unit(fns[s], case, s, i, progress=False, on_output=writer)
+        outcome = run_unit(fns[s], case, s, i, progress=False, on_output=writer,
+                           limit_s=plan.limits.deadline(case, s))
         outcome.steps_written = writer.count if writer is not None else 0
         yield outcome
