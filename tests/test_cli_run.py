@@ -237,9 +237,10 @@ def test_a_solver_that_does_not_support_a_case_is_skipped(tmp_path, monkeypatch,
     assert set(pd.read_csv(out / "small" / "summary.csv")["solver"]) == {"ic"}
     assert manifest.read(out / "small")["skipped"]["fem"] == "does not support this case"
     capsys.readouterr()
-    assert main(["gate", "--out", str(out)]) == 0
-    assert "note: small: solver fem not run (does not support this case)" in \
-        capsys.readouterr().out
+    assert main(["gate", "--out", str(out)]) == 1  # ic alone: nothing compared, nothing gated
+    text = capsys.readouterr()
+    assert "note: small: solver fem not run (does not support this case)" in text.out
+    assert "NO METRICS small" in text.err
     # the protocol asks every solver for supports(): without it the solver is unavailable
     monkeypatch.setitem(solvers.REGISTRY, "fem",
                         replace(solvers.REGISTRY["fem"], supports_attr="no_such_function"))

@@ -177,3 +177,26 @@ def test_report_fails_on_a_damaged_threshold_table(world, capsys, text, needle):
     assert f"DAMAGED {layout.THRESHOLDS}" in err and needle in err, err
     assert table.read_bytes() == before
     assert (world / "res" / layout.REPORT).exists()  # written, showing the damage
+
+
+@pytest.mark.parametrize("quick", [False, True], ids=["article-size", "quick"])
+def test_a_default_run_compares_every_point_of_every_bundled_case(quick):
+    """What `contact-vv run --all` plans gives every sweep point of every bundled case a
+    pair to gate: the orthotropic fretting sweep, with no closed form and no FEM by
+    default, gets the exact mirror relation of ic at article size (the quick tier runs all
+    the relations)."""
+    from cases.loader import BUNDLED
+    from reports.registry.pairs import pairs
+    from reports.run.plan import plan_case, select_solvers
+
+    chosen, skipped = select_solvers(None, relations=quick)
+    for name in BUNDLED:
+        plan = plan_case(name, chosen, quick=quick, skipped=skipped, explicit=False)
+        for case in plan.points:
+            assert pairs(plan.applicable(case)), (name, case.param, plan.solvers)
+    plan = plan_case("fretting_orthotropic", chosen, quick=quick, skipped=skipped,
+                     explicit=False)
+    assert "ic+mirror" in plan.solvers
+    assert any("its exact relation ic+mirror runs too" in w for w in plan.warnings) != quick
+    alone = plan_case("fretting_orthotropic", ["ic"], quick=quick, explicit=True)
+    assert alone.solvers == ["ic"]  # asked for one solver: no partner (the gate says so)

@@ -13,6 +13,7 @@ from cases.loader import case_path, load_case
 from cases.model import Case, CaseError
 from reports.registry import solvers
 from reports.registry.errors import SolverUnavailable, UserError
+from reports.registry.pairs import pairs
 from reports.registry.tolerances import check_keys
 from reports.run import deadline
 from reports.store import layout
@@ -147,6 +148,26 @@ class CasePlan:
         return [s for s in self.solvers if solvers.unsupported(s, case) is None]
 
 
+#: the metamorphic relation a default run adds where no other solver compares with one
+PARTNER = "mirror"
+
+
+def _add_partner(plan: CasePlan) -> None:
+    """Where a point of a default run has no pair to compare (one numerical solver, no
+    closed form, the FEM not run by default), that solver's exact :data:`PARTNER`
+    relation runs too, where it applies: a case the gate verifies nothing of fails it."""
+    lonely = [c for c in plan.points if not pairs(plan.applicable(c))]
+    for base in dict.fromkeys(s for c in lonely for s in plan.applicable(c)):
+        partner = f"{base}+{PARTNER}"
+        if partner in plan.solvers or partner not in solvers.names() or \
+                any(solvers.unsupported(partner, c) is not None for c in lonely):
+            continue
+        plan.solvers = [s for s in solvers.names() if s in plan.solvers or s == partner]
+        plan.warnings.append(f"{plan.name}: no other solver compares with {base} on this "
+                             f"case; its exact relation {partner} runs too (one more run "
+                             f"of {base}), so that the gate verifies something")
+
+
 def select_solvers(requested: list[str] | None, *, relations: bool = True
                    ) -> tuple[list[str], dict[str, str]]:
     """(usable solvers, {skipped solver: reason}).
@@ -233,6 +254,7 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
             if reason is not None:
                 plan.skipped[s] = reason
                 plan.solvers.remove(s)
+        _add_partner(plan)
     if not plan.units():  # a run of nothing would write an empty case that gates nothing
         why = "; ".join(f"{s}: {r}" for s, r in plan.skipped.items() if s in solver_names)
         raise CaseError(f"{source}: none of the solvers {', '.join(solver_names)} runs this "
