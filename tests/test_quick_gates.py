@@ -2,7 +2,7 @@ r"""The CI accuracy gates (issue 5, item 6) and the regression baselines.
 
 Every bundled case runs in its quick variant through the half-space solver and the
 analytic references, and hertz, cattaneo_mindlin, sliding_friction, pin_on_disk,
-pin_on_disk_orthotropic and dissimilar also through the FEM reference, exactly as
+pin_on_disk_orthotropic, dissimilar and spence also through the FEM reference, exactly as
 ``contact-vv run`` does it; every tolerance of ``metrics.csv`` must hold (``contact-vv
 gate`` exits 0), the report must show every case, and the key numbers must not drift
 from ``tests/baselines/*.csv``
@@ -11,7 +11,7 @@ the baselines explicitly with
 
     contact-vv run --all --quick --solver ic,analytic --out results
     contact-vv run hertz cattaneo_mindlin sliding_friction pin_on_disk \
-        pin_on_disk_orthotropic dissimilar --quick --out results
+        pin_on_disk_orthotropic dissimilar spence --quick --out results
     contact-vv gate --out results --update-baseline tests/baselines
 
 The FEM runs fretting only on request (tests/test_fem_fretting.py checks its first cycle).
@@ -30,7 +30,7 @@ from reports.store import layout
 
 BASELINES = Path(__file__).resolve().parent / "baselines"
 WITH_FEM = ("hertz", "cattaneo_mindlin", "sliding_friction", "pin_on_disk",
-            "pin_on_disk_orthotropic", "dissimilar")
+            "pin_on_disk_orthotropic", "dissimilar", "spence")
 
 
 @pytest.fixture(scope="module")
