@@ -120,8 +120,13 @@ def _checked(table: str, cls, d: dict, *, choices: dict | None = None,
 
 
 def _fem(d: dict) -> FemSettings:
-    fem = _checked("fem", FemSettings, d, choices={"order": (1, 2)},
+    fem = _checked("fem", FemSettings, d,
+                   choices={"order": (1, 2), "contact": ("semismooth", "augmented")},
                    positive=("block", "depth", "h", "penalty"))
+    if "penalty" in d and fem.contact != "augmented":
+        raise CaseError(f"fem.penalty applies to fem.contact = 'augmented' only (the "
+                        f"penalty of its augmented Lagrangian); fem.contact = {fem.contact!r} "
+                        "has none")
     if fem.h_surface is not None:
         check_positive(fem.h_surface, "fem.h_surface")
         if fem.h_surface > fem.h:

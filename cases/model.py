@@ -210,7 +210,8 @@ class FemSettings:
     depth: float = 20.0  # block depth H / a0
     h: float = 0.125  # element size in the contact zone / a0
     order: int = 2
-    penalty: float = 100.0  # normal penalty in units of E*/h_contact
+    penalty: float = 100.0  # normal penalty in units of E*/h_contact ('augmented' only)
+    contact: str = "semismooth"  # contact solve: 'semismooth' or 'augmented' (penalty)
     h_surface: float | None = None  # element size at the contact surface / a0 (None: h)
 
     @property

@@ -51,7 +51,7 @@ SCHEMA: dict[str, Any] = {
                "z_below": float},
     "solver": {"method": str, "tol": float, "max_iter": int},
     "fem": {"block": float, "depth": float, "h": float, "order": int, "penalty": float,
-            "h_surface": float},
+            "h_surface": float, "contact": str},
     "tolerances": dict,
     "not_converged": dict,
     "sweep": {"key": str, "values": [SCALAR], "label": str},

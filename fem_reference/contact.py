@@ -161,7 +161,7 @@ def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control
 def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u0: np.ndarray,
             *, cw: float | np.ndarray, tol: float, max_iter: int, lin: StiffenedSolver | None = None
             ) -> Solution:
-    eqs = _Equations(K=K, C=C, law=law, pts=pts, ctrl=ctrl, cw=cw, extra=_unknowns(ctrl),
+    eqs = _Equations(K=K, C=C, law=law, pts=pts, ctrl=ctrl, cw=cw, extra=unknowns(ctrl),
                      lin=lin)
     u = u0.copy()
     delta = float(ctrl.delta)
@@ -182,7 +182,7 @@ def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, 
     )
 
 
-def _unknowns(ctrl: Control) -> tuple[tuple[str, int | None], ...]:
+def unknowns(ctrl: Control) -> tuple[tuple[str, int | None], ...]:
     """The unknowns besides u: ``("delta", None)`` under load control on P,
     ``("approach", None)`` (δ too) under approach control with a far-field compliance,
     ``("D", c)`` for each tangential load component c."""
@@ -203,7 +203,7 @@ def _unknowns(ctrl: Control) -> tuple[tuple[str, int | None], ...]:
 class _Equations:
     """The condensed contact equations of one solve: ``K u − Gᵀ W t(u) = 0`` bordered by
     the control equations ``sym Σ w p_n = P`` and ``sym Σ w p_t,c = Q_c`` for the
-    unknowns ``extra`` (:func:`_unknowns`)."""
+    unknowns ``extra`` (:func:`unknowns`)."""
 
     K: np.ndarray
     C: np.ndarray

@@ -30,6 +30,7 @@ from .contact import Control, Solution, augmented
 from .contact_law import Evaluation, evaluate
 from .errors import FemError
 from .run import OutputState, Run, hertz_start
+from .semismooth import semismooth
 from .shape import slide_direction, wear_compliances
 
 N_NORMAL_DISSIMILAR = 5  # normal load increments of dissimilar materials
@@ -71,8 +72,12 @@ def solve_increment(run: Run, ctrl: Control, cw: float | np.ndarray = 0.0
     the FE contact zone (1.5 elements from r_c).
     """
     m = run.model
-    sol = augmented(m.Krel, m.Crel, m.law, run.nodes, ctrl, run.u, cw=cw,
-                    tol=max(1e-9, 10 * m.case.solver.tol), lin=run.lin)
+    tol = max(1e-9, 10 * m.case.solver.tol)
+    if run.op is not None:
+        sol = semismooth(run.op, m.law, run.nodes, ctrl, cw=cw, tol=tol)
+    else:
+        sol = augmented(m.Krel, m.Crel, m.law, run.nodes, ctrl, run.u, cw=cw, tol=tol,
+                        lin=run.lin)
     ev = sol.ev
     active = ev.pn > 0
     if active.any():

@@ -22,6 +22,7 @@ from .far_field import block_offset, block_offset_t
 from .model import FemModel
 from .nodal import coefficients, dual_weights, modified_basis
 from .sampling import ProbeSampling, probe_layout, probe_sampling
+from .semismooth import NodalCompliance
 from .stiffened import StiffenedSolver
 from .stresses import PointLocator
 
@@ -44,7 +45,8 @@ class Run:
     D: np.ndarray  # rigid tangential displacement g_t,o
     compliance: float = 0.0  # far-field compliance c: half-space approach = δ + c P
     compliance_t: float = 0.0  # tangential: half-space shift = D + c_t Q (Q on body a)
-    lin: StiffenedSolver | None = None  # the contact solves' kept factors (start_run)
+    lin: StiffenedSolver | None = None  # the augmented solves' kept factors (start_run)
+    op: NodalCompliance | None = None  # the semi-smooth solves' nodal compliance
 
 
 @dataclass(frozen=True)
@@ -79,10 +81,13 @@ def start_run(model: FemModel) -> Run:
     probes = Points(G=surf.operator(sampling.N)[:, model.cidx].tocsr(), w=np.zeros(xy.shape[0]),
                     xy=xy, h=(xy**2).sum(axis=1) / (2 * R), inside=sampling.found)
     u, delta = hertz_start(model, nodes)
+    semismooth = case.fem.contact == "semismooth"
     return Run(model=model, nodes=nodes, probes=probes, G_all=G_all, Binv=Binv.tocsr(),
                Nmod=(sampling.N @ B.T).tocsr(), sampling=sampling,
                locator=PointLocator(model.space),
-               u=u, delta=delta, D=np.zeros(2), lin=StiffenedSolver(model.Crel),
+               u=u, delta=delta, D=np.zeros(2),
+               lin=None if semismooth else StiffenedSolver(model.Crel),
+               op=NodalCompliance.build(model.Crel, nodes.G, nodes.w) if semismooth else None,
                **dict(zip(("compliance", "compliance_t"),
                           far_compliance(model, nodes, G_all), strict=True)))
 

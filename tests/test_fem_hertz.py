@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -44,9 +45,12 @@ def axis_vm_peak(nu):
 
 
 @functools.cache
-def run(h: float, block: float, penalty: float = 100.0):
+def run(h: float, block: float, penalty: float | None = None):
+    """The FEM on the quick hertz case: the semi-smooth solve, or with a ``penalty`` the
+    augmented Lagrangian."""
     case = load_case("hertz", quick=True)[0]
-    case = case.with_changes(fem=FemSettings(block=block, depth=block, h=h, penalty=penalty))
+    contact = {} if penalty is None else {"contact": "augmented", "penalty": penalty}
+    case = case.with_changes(fem=FemSettings(block=block, depth=block, h=h, **contact))
     return case, solve(case)
 
 
@@ -154,11 +158,13 @@ def test_fields_are_consistent():
 def test_penalty_independence():
     """The augmented Lagrangian makes the result independent of the penalty: multiplying
     it by 10 or dividing it by 10 changes every result, the contact area and the
-    pressure field included, by less than 1e-9 (measured at most 2.3e-11; the plain
-    penalty method moved the contact area by -3.9 % here)."""
-    case, res = run(0.25, 10.0)
-    for factor in (10.0, 0.1):
-        _, other = run(0.25, 10.0, 100.0 * factor)
+    pressure field included, by less than 1e-9 (the plain penalty method moved the
+    contact area by -3.9 % here); and the semi-smooth solve, which has no penalty,
+    reaches the same solution."""
+    case, res = run(0.25, 10.0, 100.0)
+    _, ssn = run(0.25, 10.0)
+    for factor in (10.0, 0.1, None):
+        other = ssn if factor is None else run(0.25, 10.0, 100.0 * factor)[1]
         a, b = res.steps[0].scalars, other.steps[0].scalars
         for key in ("p_max", "vm_max", "vm_axis_max", "vm_axis_z", "approach", "P_reaction",
                     "a_x", "a_y", "contact_area"):
@@ -256,6 +262,7 @@ def test_nonconvergence_raises_with_residual():
     case = case.with_changes(fem=FemSettings(block=10, depth=10, h=0.5),
                              solver=case.solver.__class__(max_iter=1, tol=1e-10))
     import fem_reference.contact as contact
+    import fem_reference.semismooth as semismooth
 
     orig = contact._newton
 
@@ -265,8 +272,11 @@ def test_nonconvergence_raises_with_residual():
 
     contact._newton = capped
     try:
-        with pytest.raises(ContactConvergenceError, match="residual"):
-            solve(case, vtu=False)
+        for solver in ("semismooth", "augmented"):
+            with (pytest.MonkeyPatch.context() as mp,
+                  pytest.raises(ContactConvergenceError, match="residual")):
+                mp.setattr(semismooth, "MAX_ITER", 1)
+                solve(case.with_changes(fem=replace(case.fem, contact=solver)), vtu=False)
     finally:
         contact._newton = orig
 
