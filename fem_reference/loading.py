@@ -74,7 +74,7 @@ def solve_increment(run: Run, ctrl: Control, cw: float | np.ndarray = 0.0
     m = run.model
     tol = max(1e-9, 10 * m.case.solver.tol)
     if run.op is not None:
-        sol = semismooth(run.op, m.law, run.nodes, ctrl, cw=cw, tol=tol)
+        sol = semismooth(run.op, m.law, run.nodes, ctrl, cw=cw, tol=tol, kept=run.kept)
     else:
         sol = augmented(m.Krel, m.Crel, m.law, run.nodes, ctrl, run.u, cw=cw, tol=tol,
                         lin=run.lin)

@@ -22,7 +22,7 @@ from .far_field import block_offset, block_offset_t
 from .model import FemModel
 from .nodal import coefficients, dual_weights, modified_basis
 from .sampling import ProbeSampling, probe_layout, probe_sampling
-from .semismooth import NodalCompliance
+from .semismooth import KeptFactors, NodalCompliance
 from .stiffened import StiffenedSolver
 from .stresses import PointLocator
 
@@ -47,6 +47,7 @@ class Run:
     compliance_t: float = 0.0  # tangential: half-space shift = D + c_t Q (Q on body a)
     lin: StiffenedSolver | None = None  # the augmented solves' kept factors (start_run)
     op: NodalCompliance | None = None  # the semi-smooth solves' nodal compliance
+    kept: KeptFactors = field(default_factory=KeptFactors)  # ... and their kept factors
 
 
 @dataclass(frozen=True)

@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as la
 import scipy.sparse as sp
+from scipy.sparse.linalg import LinearOperator, gmres
 
 from cases.result import OPEN, SLIP, STICK
 
@@ -40,6 +41,12 @@ from .threads import blas_threads
 
 MAX_ITER = 100  # Newton iterations of one solve
 MAX_HALVINGS = 10  # line search
+#: a Newton system on the unknowns of the kept factors is solved by GMRES preconditioned
+#: with them, in at most this many iterations (else the factors are renewed) ...
+KRYLOV_MAX = 30
+#: ... to this relative residual (checked on the system): an inexact Newton step that
+#: contracts the residual by about this factor per iteration near the solution
+KRYLOV_RTOL = 1e-6
 
 
 @dataclass(frozen=True)
@@ -52,6 +59,7 @@ class NodalCompliance:
     G: sp.csr_matrix
     w: np.ndarray
     HW: np.ndarray
+    _last: tuple | None = None  # (cols, HW[cols][:, cols]) of the last block
 
     @classmethod
     def build(cls, C: np.ndarray, G: sp.csr_matrix, w: np.ndarray) -> NodalCompliance:
@@ -59,9 +67,77 @@ class NodalCompliance:
         H = np.asarray(G @ GC.T).T  # G C Gᵀ
         return cls(C=C, G=G, w=w, HW=H * np.tile(w, 3)[None, :])
 
+    def block(self, cols: np.ndarray) -> np.ndarray:
+        """``HW[cols][:, cols]``, kept for the next call with the same ``cols`` (the
+        gather from the large matrix costs more than the Newton system's copy)."""
+        last = self._last
+        if last is None or not np.array_equal(last[0], cols):
+            last = (cols.copy(), self.HW[np.ix_(cols, cols)])
+            object.__setattr__(self, "_last", last)
+        return last[1]
+
     def u(self, lam: np.ndarray) -> np.ndarray:
         """Condensed displacements of the tractions ``lam`` (3, n)."""
         return self.C @ (self.G.T @ (np.tile(self.w, 3) * lam.ravel()))
+
+
+class KeptFactors:
+    """The LU factors of one Newton system (:func:`semismooth`), kept across iterations
+    and solves.  A later system differs in the rows of the nodes whose state or slip
+    direction changed and in the few nodes that came into or out of contact: GMRES,
+    preconditioned by the kept factors (on the unknowns both systems share; a new
+    unknown by its diagonal), solves it in a few iterations of O(N²) instead of a new
+    O(N³) factorisation.  Counts ``factorisations`` and ``krylov`` solves."""
+
+    def __init__(self) -> None:
+        self.cols: np.ndarray | None = None
+        self.extra = -1
+        self.lu = None
+        self.factorisations = 0
+        self.krylov = 0
+
+    def solve(self, J: np.ndarray, b: np.ndarray, cols: np.ndarray) -> np.ndarray:
+        extra = J.shape[0] - cols.size
+        if self.lu is not None and extra == self.extra:
+            x = self._krylov(J, b, cols)
+            if x is not None:
+                self.krylov += 1
+                return x
+        self.lu = la.lu_factor(J, check_finite=False)
+        self.cols, self.extra = cols.copy(), extra
+        self.factorisations += 1
+        return la.lu_solve(self.lu, b, check_finite=False)
+
+    def _krylov(self, J: np.ndarray, b: np.ndarray, cols: np.ndarray) -> np.ndarray | None:
+        old, n_old = self.cols, self.lu[0].shape[0]
+        pos = np.searchsorted(old, cols)  # cols and old are sorted within their blocks
+        pos = np.minimum(pos, old.size - 1)
+        shared = old[pos] == cols
+        if not np.array_equal(np.sort(old), old) or shared.sum() < 0.9 * max(cols.size, old.size):
+            return None
+        i_new = np.concatenate([np.flatnonzero(shared), cols.size + np.arange(self.extra)])
+        i_old = np.concatenate([pos[shared], old.size + np.arange(self.extra)])
+        alone = np.flatnonzero(~shared)
+        diag = np.diag(J)[alone]
+        if np.any(diag == 0):
+            return None
+
+        def prec(v: np.ndarray) -> np.ndarray:
+            w = np.zeros(n_old)
+            w[i_old] = v[i_new]
+            z = la.lu_solve(self.lu, w, check_finite=False)
+            out = np.empty_like(v)
+            out[i_new] = z[i_old]
+            out[alone] = v[alone] / diag
+            return out
+
+        M = LinearOperator(J.shape, matvec=prec, dtype=float)
+        x, info = gmres(J, b, x0=prec(b), rtol=KRYLOV_RTOL, restart=KRYLOV_MAX, maxiter=1,
+                        M=M)
+        if info != 0 or not np.isfinite(x).all() or np.linalg.norm(J @ x - b) \
+                > 10 * KRYLOV_RTOL * max(float(np.linalg.norm(b)), 1e-300):
+            return None
+        return x
 
 
 @dataclass
@@ -91,24 +167,27 @@ class _Laws:
 
 def semismooth(op: NodalCompliance, law: Law, pts: Points, ctrl: Control, *,
                cw: float | np.ndarray = 0.0, tol: float = 1e-9,
-               max_iter: int | None = None) -> Solution:
+               max_iter: int | None = None, kept: KeptFactors | None = None) -> Solution:
     """Solve the contact under ``ctrl`` from the tractions ``pts.lam_n``, ``pts.t_old``
     (the last state's) by the semi-smooth Newton method of the module doc; on return
     ``pts.lam_n``, ``pts.t_old`` hold the solution's tractions (as after
     :func:`fem_reference.contact.augmented`).  Converged when every function is below
     ``tol`` times the largest pressure (and the controls likewise) with the active sets
     of the last step unchanged; at most ``max_iter`` (default :data:`MAX_ITER`)
-    iterations.  ``iterations``: Newton iterations.
+    iterations.  ``iterations``: Newton iterations.  ``kept``: the factors of the
+    Newton systems (:class:`KeptFactors`), kept by the caller for the next solves.
     Raises :class:`~fem_reference.contact.ContactConvergenceError` with the residual.
     """
     with blas_threads(1):
-        return _Solver(op, law, pts, ctrl, cw, tol).run(max_iter or MAX_ITER)
+        return _Solver(op, law, pts, ctrl, cw, tol, kept or KeptFactors()).run(
+            max_iter or MAX_ITER)
 
 
 class _Solver:
     def __init__(self, op: NodalCompliance, law: Law, pts: Points, ctrl: Control,
-                 cw: float | np.ndarray, tol: float):
+                 cw: float | np.ndarray, tol: float, kept: KeptFactors):
         self.op, self.law, self.pts, self.ctrl, self.tol = op, law, pts, ctrl, tol
+        self.kept = kept
         n = pts.n
         self.cw = np.broadcast_to(np.asarray(cw, dtype=float), (n,)).copy()
         self.extra = unknowns(ctrl)
@@ -212,13 +291,14 @@ class _Solver:
                 "semi-smooth Newton: no node in contact under a prescribed load (the "
                 f"iterate lost the contact; relative residual {self.merit(s, L):.3e})")
         nk = cols.size
-        rows_z = HW[np.ix_(2 * n + act, cols)]
         cw = self.cw[act]
         J = np.zeros((nk + ne, nk + ne))
+        # every kept row starts as the nodal compliance of its component: Δd on the
+        # kept unknowns (the rows of the kept components are the kept unknowns' indices)
+        J[:nk, :nk] = self.op.block(cols)
         b = np.zeros(nk + ne)
         iz = (len(comps) - 1) * na + np.arange(na)  # the λ_n block of the kept unknowns
         # normal rows (in mm): −Δδ + Δd_z + c_w Δλ_n = −g̃_n
-        J[iz, :nk] = rows_z
         J[iz, iz] += cw
         b[iz] = -(L.gn[act] + cw * s.lam[2, act]) - d_e[2, act]
         ecol = {k: nk + j for j, k in enumerate(self.extra)}
@@ -226,7 +306,7 @@ class _Solver:
         if dcol is not None:
             J[iz, dcol] = -1.0
         if keep_t:
-            self._tangential_rows(J, b, s, L, act, cols, rows_z, d_e, ecol, dcol)
+            self._tangential_rows(J, b, s, L, act, nk, d_e, ecol, dcol)
         self._control_rows(J, b, L, act, cols, dlam, ecol)
         # friction: a dead tangential component lies on a symmetry plane, λ = 0 there
         # (sliding without tangential coupling: λ_t = c ρ, its rows stand)
@@ -236,37 +316,37 @@ class _Solver:
         J[dead] = 0.0
         J[dead, dead] = 1.0
         b[dead] = -s.lam.ravel()[cols[dead]]
-        try:
-            x = la.solve(J, b, check_finite=False)
-        except (la.LinAlgError, ValueError) as exc:
-            raise ContactConvergenceError(f"singular semi-smooth Newton system: {exc}") from None
+        with np.errstate(divide="ignore", invalid="ignore"):
+            x = self.kept.solve(J, b, cols)
+        if not np.isfinite(x).all():
+            raise ContactConvergenceError("singular semi-smooth Newton system")
         dlam_flat[cols] = x[:nk]
         return dlam_flat.reshape(3, n), x[nk:]
 
-    def _tangential_rows(self, J, b, s, L, act, cols, rows_z, d_e, ecol, dcol) -> None:
-        law, HW, n = self.law, self.op.HW, self.pts.n
+    def _tangential_rows(self, J, b, s, L, act, nk, d_e, ecol, dcol) -> None:
+        """The tangential rows of the active nodes, in place: ``J[:nk, :nk]`` holds Δd_t
+        and Δd_z on entry (:meth:`step`)."""
+        law = self.law
         na = act.size
-        ix, iy = np.arange(na), na + np.arange(na)
+        ix, iy, iz = np.arange(na), na + np.arange(na), 2 * na + np.arange(na)
         r = self.r[act]
         st, sl = L.stick[act], L.slip[act]
-        rows_t = np.stack([HW[np.ix_(act, cols)], HW[np.ix_(n + act, cols)]], axis=1)
         dcols = [ecol.get(k) for k in (("D", 0), ("D", 1), ("shift", 0), ("shift", 1))]
         Dcol = [dcols[0] if dcols[0] is not None else dcols[2],
                 dcols[1] if dcols[1] is not None else dcols[3]]
         # stick rows (in mm): ΔD + Δd_t = −Δg_t
         for c, ic in ((0, ix), (1, iy)):
             k = ic[st]
-            J[k, :] = 0.0
-            J[k, :cols.size] = rows_t[st, c]
             b[k] = -(L.gt[act[st], c] - self.pts.gt_old[act[st], c]) - d_e[c, act[st]]
             if Dcol[c] is not None:
                 J[k, Dcol[c]] = 1.0
         if law.mode == "sliding":  # Δλ_t − c (Δλ_n − r Δg̃_n) = −F_t, over r
             cvec = law.slide_traction
+            rows_z = J[iz, :nk]
             for c, ic in ((0, ix), (1, iy)):
-                J[ic, :cols.size] = cvec[c] * rows_z
+                J[ic, :nk] = cvec[c] * rows_z
                 J[ic, ic] += 1.0 / r
-                J[ic, 2 * na + np.arange(na)] += cvec[c] * (self.cw[act] - 1.0 / r)
+                J[ic, iz] += cvec[c] * (self.cw[act] - 1.0 / r)
                 b[ic] = -L.F[c, act] / r - cvec[c] * d_e[2, act]
                 if dcol is not None:
                     J[ic, dcol] = -cvec[c]
@@ -280,34 +360,30 @@ class _Solver:
         P = (np.eye(2)[None] - ts[:, :, None] * q[:, None, :] / (ns**2)[:, None, None]) \
             / ns[:, None, None]
         nhat = ts / ns[:, None]
-        A = ps[:, None, None] * P * self.r_t[nodes, None, None] @ law.M2  # ρ P r_t 𝕄²
         rr = r[k_sl]
+        A = (ps / rr)[:, None, None] * P * self.r_t[nodes, None, None] @ law.M2  # ρ P r_t 𝕄² / r
         # slip rows over r: [(I − ρP)Δλ_t − n̂(1 − r c_w)Δλ_n + n̂ r Δd_z + A Δd_t
-        #                   − n̂ r Δδ + A ΔD] / r = −F_t / r
-        M = np.einsum("kab,kbj->kaj", A, rows_t[k_sl]) \
-            + nhat[:, :, None] * (rr[:, None, None] * rows_z[k_sl][:, None, :])
-        M /= rr[:, None, None]
+        #                   − n̂ r Δδ + A ΔD] / r = −F_t / r  (A: ρ P r_t 𝕄²)
+        dx, dy, dz = J[ix[k_sl], :nk], J[iy[k_sl], :nk], J[iz[k_sl], :nk]
+        new_x = A[:, 0, 0, None] * dx + A[:, 0, 1, None] * dy + nhat[:, 0, None] * dz
+        new_y = A[:, 1, 0, None] * dx + A[:, 1, 1, None] * dy + nhat[:, 1, None] * dz
         IP = (np.eye(2)[None] - ps[:, None, None] * P) / rr[:, None, None]
         cwk = self.cw[nodes]
         rhs = -L.F[:2, nodes].T / rr[:, None] - (
-            np.einsum("kab,kb->ka", A, d_e[:2, nodes].T) + nhat * (rr * d_e[2, nodes])[:, None]
-        ) / rr[:, None]
-        iz = 2 * na + k_sl
-        for c, ic in ((0, ix), (1, iy)):
-            k = ic[k_sl]
-            J[k, :] = 0.0
-            J[k, :cols.size] = M[:, c]
+            np.einsum("kab,kb->ka", A, d_e[:2, nodes].T) + nhat * d_e[2, nodes][:, None])
+        for c, new in ((0, new_x), (1, new_y)):
+            k = (ix, iy)[c][k_sl]
+            J[k, :nk] = new
+            J[k, nk:] = 0.0
             J[k, ix[k_sl]] += IP[:, c, 0]
             J[k, iy[k_sl]] += IP[:, c, 1]
-            J[k, iz] += -nhat[:, c] * (1.0 - rr * cwk) / rr
+            J[k, iz[k_sl]] += -nhat[:, c] * (1.0 - rr * cwk) / rr
             b[k] = rhs[:, c]
             if dcol is not None:
                 J[k, dcol] = -nhat[:, c]
             for e in (0, 1):
                 if Dcol[e] is not None:
-                    J[k, Dcol[e]] = A[:, c, e] / rr
-        # stick and slip rows of a node alike; the nodes that neither stick nor slip
-        # are not active (not in ``act``)
+                    J[k, Dcol[e]] = A[:, c, e]
 
     def _control_rows(self, J, b, L, act, cols, dlam, ecol) -> None:
         ctrl, w, n = self.ctrl, self.pts.w, self.pts.n

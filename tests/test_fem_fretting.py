@@ -152,3 +152,29 @@ def test_regime_events_are_recorded_once_with_their_cycle():
     load = Events(100.0, 1000.0, 500.0, 1.0, held_approach=False)
     load.observe(1, 0.0, 0.2, 1.0, 0.0)  # held load: no load events; gross -> partial
     assert [e.event for e in load.events] == ["gross_to_partial_slip"]
+
+
+def test_semismooth_and_augmented_solves_reach_the_same_worn_partial_slip():
+    """The two contact solves (fem.contact) solve the same laws: the semi-smooth Newton
+    method on the tractions with no penalty, and the augmented Lagrangian on a penalty.
+    On a worn partial-slip cycle (orthotropic friction at β = 90°, wear of both bodies,
+    held approach; one simulated cycle of J = 500 on a coarse a0/4 mesh) they agree
+    within their convergence tolerance (10 solver.tol = 1e-7 of the largest traction;
+    allowed 1e-6): load, wear, stick zone, pressure, loop energy and the fields."""
+    import dataclasses
+
+    case = load_case("fretting_orthotropic", quick=True)[1]
+    fr = dataclasses.replace(case.fretting, cycles=500.0, output_cycles=(500.0,))
+    case = dataclasses.replace(case, fretting=fr)
+    runs = {c: solve(case.with_changes(fem=dataclasses.replace(case.fem, h=0.25, contact=c)),
+                     vtu=False) for c in ("semismooth", "augmented")}
+    ssn, aug = (runs[c].steps[-1] for c in ("semismooth", "augmented"))
+    assert ssn.scalars["stick_area"] > 0.2 * ssn.scalars["contact_area"]  # partial slip
+    assert ssn.scalars["w_max"] > 0
+    for key in ("P", "Qx", "p_max", "w_max", "wear_volume", "stick_area", "vm_max"):
+        assert ssn.scalars[key] == pytest.approx(aug.scalars[key], rel=1e-6, abs=1e-12), key
+    for key in ("p_n", "p_x", "wear_a", "wear_b"):
+        a, b = ssn.surface[key], aug.surface[key]
+        assert np.abs(a - b).max() <= 1e-6 * np.abs(b).max(), key
+    e = [runs[c].tables["cycles"]["energy"] for c in ("semismooth", "augmented")]
+    assert np.allclose(e[0], e[1], rtol=1e-6)
