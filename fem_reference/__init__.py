@@ -51,11 +51,12 @@ def supports(case: Case) -> str | None:
 
 def by_default(case: Case) -> str | None:
     """None when a run without ``--solver`` should include the FEM on ``case``, else why
-    it runs only on request: fretting, whose contact solves with wear take minutes per
-    quick sweep point (docs/fem-notes.md, part 5)."""
+    it runs only on request: fretting, whose worn partial-slip stick zone the quick mesh
+    does not resolve and whose article-size sweeps take hours (docs/fem-notes.md, part 5)."""
     if case.kind == "fretting":
         return ("fretting runs through the FEM only on request (--solver ic,fem,analytic): "
-                "2-15 min per quick sweep point (docs/fem-notes.md, part 5)")
+                "the worn stick zone of partial slip is not resolved at the quick mesh, and "
+                "the article-size sweeps take hours (docs/fem-notes.md, part 5)")
     return None
 
 

@@ -74,6 +74,10 @@ REFUSED = [
     # no σ_VM maximum gated at all
     ("nc-both-maxima", TINY + '[not_converged]\nvm_max = "x"\nvm_max_below = "y"\n', [],
      "not_converged: vm_max and vm_max_below both declared"),
+    # the FEM's contact solve: an unknown one, and a penalty the chosen one has not
+    ("fem-contact-unknown", TINY + '[fem]\ncontact = "newton"\n', [], "fem.contact"),
+    ("fem-penalty-semismooth", TINY + '[fem]\npenalty = 10.0\n', [],
+     "fem.penalty applies to fem.contact = 'augmented' only"),
     # flags and solvers that would do nothing
     ("convergence-closed-form", TINY, ["--solver", "analytic", "--convergence"],
      "--convergence: no run has a grid to refine"),

@@ -31,6 +31,9 @@ from reports.store import layout
 BASELINES = Path(__file__).resolve().parent / "baselines"
 WITH_FEM = ("hertz", "cattaneo_mindlin", "sliding_friction", "pin_on_disk",
             "pin_on_disk_orthotropic", "dissimilar", "spence")
+#: fretting runs through the FEM on request (fem_reference.by_default): the first cycles
+#: of both regimes, against Mindlin–Deresiewicz and the half-space solver
+FEM_ON_REQUEST = ("fretting_isotropic",)
 
 
 @pytest.fixture(scope="module")
@@ -39,6 +42,8 @@ def quick(tmp_path_factory) -> Path:
     assert main(["run", "--all", "--quick", "--solver", "ic,analytic", "--no-progress",
                  "--out", str(out)]) == 0
     assert main(["run", *WITH_FEM, "--quick", "--no-progress", "--out", str(out)]) == 0
+    assert main(["run", *FEM_ON_REQUEST, "--quick", "--solver", "ic,fem,analytic",
+                 "--no-progress", "--out", str(out)]) == 0
     return out
 
 
@@ -49,7 +54,7 @@ def test_every_case_ran(quick):
         summary = pd.read_csv(quick / name / layout.SUMMARY)
         solvers = set(summary["solver"])
         assert "ic" in solvers, name
-        if name in WITH_FEM:
+        if name in WITH_FEM + FEM_ON_REQUEST:
             assert "fem" in solvers, name
             assert "ic-fem" in set(pd.read_csv(quick / name / layout.METRICS)["pair"])
 
