@@ -8,7 +8,7 @@ P2 nodes, free DOFs and the condensed surface DOFs follow.  Memory: the process'
 plus the largest stage of the model — assembly, the kept PARDISO factor, the
 condensation ``Sᵀ K⁻¹ S``, the dense surface operators.  Time: start-up, meshing,
 assembly, factorisation and condensation of a cold point, then the contact solves of
-the load path (Newton iterations on the DOFs in contact).  :attr:`Cost.memory_keys` and
+the load path (on the DOFs in contact, by the solve of ``fem.contact``).  :attr:`Cost.memory_keys` and
 ``time_keys`` name the keys whose refinement raises the estimate by 10 % or more,
 strongest first.  The model's constants are fitted on this project's meshes and runs;
 the fit, the measurements and the scaling of each stage are in ``benchmarks/README.md``
@@ -45,8 +45,11 @@ SECONDS_PER_TET_ASSEMBLY = 1.2e-4
 SECONDS_FACTOR = 2.0e-9  # times n²
 SECONDS_CONDENSE = 5.5e-10  # times n^(4/3) per condensed column
 SECONDS_DENSE = 1.2e-10  # times m³ (C_rel Cholesky, K_rel)
-SECONDS_CONTACT = 1.1e-10  # times A³ per Newton iteration (A DOFs in contact)
-SECONDS_CONTACT_M2 = 2e-9  # times m² per Newton iteration (dense products, line search)
+SECONDS_CONTACT = 1.1e-10  # times A³ per Newton iteration (A DOFs in contact) ...
+SECONDS_CONTACT_M2 = 2e-9  # ... + m² (dense products, line search): fem.contact = augmented
+#: the semi-smooth solve (fem.contact = semismooth): times A² per contact solve (a few
+#: iterations, each a GMRES solve preconditioned by kept LU factors or a new LU)
+SECONDS_SEMISMOOTH = 1.3e-7
 SECONDS_OUTPUT = 0.3  # per output step (recovery, stress planes, .vtu)
 #: the calibration of the time estimate: the calibration runs' wall times lie within
 #: this factor of it (benchmarks/README.md, tests/test_fem_cost.py)
@@ -250,7 +253,9 @@ def _breakdown(case: Case) -> Breakdown:
         "factorisation": n_factors * SECONDS_FACTOR * n * n,
         "condensation": n_nu * SECONDS_CONDENSE * n ** (4.0 / 3.0) * m,
         "dense": SECONDS_DENSE * m**3,
-        "contact": solves * iterations * (SECONDS_CONTACT * A**3 + SECONDS_CONTACT_M2 * m * m),
+        "contact": solves * (SECONDS_SEMISMOOTH * A**2 if case.fem.contact == "semismooth"
+                             else iterations * (SECONDS_CONTACT * A**3
+                                                + SECONDS_CONTACT_M2 * m * m)),
         "output": SECONDS_OUTPUT * outputs,
     }
     return Breakdown(tets=float(tets), dofs=float(n), surface_dofs=float(m),

@@ -8,7 +8,9 @@ Wohlmuth 2008 for 3D Coulomb friction with dual bases), in the tractions
     F_n = λ_n − ρ,                          ρ = ⟨λ_n − r g̃_n⟩,  g̃_n = g_n + c_w λ_n,
     F_t = λ_t − Π_ρ(λ_t − r_t 𝕄² Δg_t),
 
-with ``Π_ρ`` the radial projection onto the friction ellipse ``‖p_t‖_μ ≤ ρ`` (Eqs. 9,
+(full sliding along a prescribed direction: ``F_t = λ_t − c λ_n`` on a pressed node,
+Eq. 13, whose tangential tractions then leave the Newton system), with ``Π_ρ`` the
+radial projection onto the friction ellipse ``‖p_t‖_μ ≤ ρ`` (Eqs. 9,
 17), ``Δg_t = g_t − g_t,old`` the tangential gap since the last converged state and
 ``c_w`` the wear compliance of the step (Eq. 23).  A zero is the exact solution: an
 active point has no gap, a stick point has not slipped, a slipping one lies on the
@@ -225,8 +227,8 @@ class _Solver:
         slip = np.zeros(n, bool)
         if law.mode == "frictionless":
             F[:2] = lam[:2]
-        elif law.mode == "sliding":
-            F[:2] = lam[:2] - law.slide_traction[:, None] * rho[None, :]
+        elif law.mode == "sliding":  # λ_t = c λ_n where pressed (= c ρ at the solution)
+            F[:2] = lam[:2] - law.slide_traction[:, None] * np.where(active, lam[2], 0.0)
             slip = active
         else:
             tstar = lam[:2].T - self.r_t[:, None] * ((gt - pts.gt_old) @ law.M2.T)
@@ -275,7 +277,7 @@ class _Solver:
         λ of every other component is set to zero (frictionless: λ_t; open: all)."""
         law, HW, n = self.law, self.op.HW, self.pts.n
         act = np.flatnonzero(L.active)
-        keep_t = law.mode != "frictionless"
+        keep_t = law.mode == "friction"  # sliding: Δλ_t = c Δλ_n − F_t, eliminated
         comps = (0, 1, 2) if keep_t else (2,)
         cols = np.concatenate([c * n + act for c in comps])  # kept unknowns (flat 3n index)
         dlam = -L.F.copy()  # eliminated components: Δλ = −F = −λ
@@ -296,6 +298,9 @@ class _Solver:
         # every kept row starts as the nodal compliance of its component: Δd on the
         # kept unknowns (the rows of the kept components are the kept unknowns' indices)
         J[:nk, :nk] = self.op.block(cols)
+        if law.mode == "sliding":  # the tangential tractions c Δλ_n of the kept Δλ_n
+            c = law.slide_traction
+            J[:nk, :nk] += c[0] * HW[np.ix_(cols, act)] + c[1] * HW[np.ix_(cols, n + act)]
         b = np.zeros(nk + ne)
         iz = (len(comps) - 1) * na + np.arange(na)  # the λ_n block of the kept unknowns
         # normal rows (in mm): −Δδ + Δd_z + c_w Δλ_n = −g̃_n
@@ -309,9 +314,7 @@ class _Solver:
             self._tangential_rows(J, b, s, L, act, nk, d_e, ecol, dcol)
         self._control_rows(J, b, L, act, cols, dlam, ecol)
         # friction: a dead tangential component lies on a symmetry plane, λ = 0 there
-        # (sliding without tangential coupling: λ_t = c ρ, its rows stand)
-        fixed = L.stick[act] | (law.mode == "friction")
-        fixed = np.concatenate([fixed] * (len(comps) - 1) + [np.zeros(na, bool)])
+        fixed = np.concatenate([np.ones(na, bool)] * (len(comps) - 1) + [np.zeros(na, bool)])
         dead = np.flatnonzero(self.dead.ravel()[cols] & fixed)
         J[dead] = 0.0
         J[dead, dead] = 1.0
@@ -321,6 +324,9 @@ class _Solver:
         if not np.isfinite(x).all():
             raise ContactConvergenceError("singular semi-smooth Newton system")
         dlam_flat[cols] = x[:nk]
+        if law.mode == "sliding":
+            for c in (0, 1):
+                dlam_flat[c * n + act] += law.slide_traction[c] * x[:nk]
         return dlam_flat.reshape(3, n), x[nk:]
 
     def _tangential_rows(self, J, b, s, L, act, nk, d_e, ecol, dcol) -> None:
@@ -340,17 +346,6 @@ class _Solver:
             b[k] = -(L.gt[act[st], c] - self.pts.gt_old[act[st], c]) - d_e[c, act[st]]
             if Dcol[c] is not None:
                 J[k, Dcol[c]] = 1.0
-        if law.mode == "sliding":  # Δλ_t − c (Δλ_n − r Δg̃_n) = −F_t, over r
-            cvec = law.slide_traction
-            rows_z = J[iz, :nk]
-            for c, ic in ((0, ix), (1, iy)):
-                J[ic, :nk] = cvec[c] * rows_z
-                J[ic, ic] += 1.0 / r
-                J[ic, iz] += cvec[c] * (self.cw[act] - 1.0 / r)
-                b[ic] = -L.F[c, act] / r - cvec[c] * d_e[2, act]
-                if dcol is not None:
-                    J[ic, dcol] = -cvec[c]
-            return
         if not sl.any():
             return
         k_sl = np.flatnonzero(sl)
