@@ -8,10 +8,11 @@ P2 nodes, free DOFs and the condensed surface DOFs follow.  Memory: the process'
 plus the largest stage of the model — assembly, the kept PARDISO factor, the
 condensation ``Sᵀ K⁻¹ S``, the dense surface operators.  Time: start-up, meshing,
 assembly, factorisation and condensation of a cold point, then the contact solves of
-the load path (on the DOFs in contact, by the solve of ``fem.contact``).  :attr:`Cost.memory_keys` and
-``time_keys`` name the keys whose refinement raises the estimate by 10 % or more,
-strongest first.  The model's constants are fitted on this project's meshes and runs;
-the fit, the measurements and the scaling of each stage are in ``benchmarks/README.md``
+the load path (on the DOFs in contact, by the solve of ``fem.contact``).
+:attr:`Cost.memory_keys` and ``time_keys`` name the keys whose refinement raises the
+estimate by 10 % or more, strongest first. The model's constants are fitted on this
+project's meshes and runs; the fit, the measurements and the scaling of each stage are
+in ``benchmarks/README.md``
 ("The FEM's cost estimate").
 """
 
