@@ -19,10 +19,11 @@ import scipy.sparse as sp
 from .contact import Solution
 from .contact_law import Evaluation, Points
 from .far_field import block_offset, block_offset_t
+from .kept_factors import KeptFactors
 from .model import FemModel
 from .nodal import coefficients, dual_weights, modified_basis
+from .nodal_compliance import NodalCompliance
 from .sampling import ProbeSampling, probe_layout, probe_sampling
-from .semismooth import KeptFactors, NodalCompliance
 from .stiffened import StiffenedSolver
 from .stresses import PointLocator
 

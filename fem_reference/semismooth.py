@@ -31,115 +31,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.linalg as la
-import scipy.sparse as sp
-from scipy.sparse.linalg import LinearOperator, gmres
 
 from cases.result import OPEN, SLIP, STICK
 
 from .contact import ContactConvergenceError, Control, Solution, unknowns
 from .contact_law import Evaluation, Law, Points, norm_with
+from .kept_factors import KeptFactors
+from .nodal_compliance import NodalCompliance
 from .threads import blas_threads
 
 MAX_ITER = 100  # Newton iterations of one solve
 MAX_HALVINGS = 10  # line search
-#: a Newton system on the unknowns of the kept factors is solved by GMRES preconditioned
-#: with them, in at most this many iterations (else the factors are renewed) ...
-KRYLOV_MAX = 30
-#: ... to this relative residual (checked on the system): an inexact Newton step that
-#: contracts the residual by about this factor per iteration near the solution
-KRYLOV_RTOL = 1e-6
-
-
-@dataclass(frozen=True)
-class NodalCompliance:
-    """``HW = G C Gᵀ W``: the relative nodal displacements [x; y; z] per nodal traction
-    [x; y; z] of the points ``G``, ``w``; and ``C`` for the condensed displacements
-    ``u = C Gᵀ W λ``."""
-
-    C: np.ndarray
-    G: sp.csr_matrix
-    w: np.ndarray
-    HW: np.ndarray
-    _last: tuple | None = None  # (cols, HW[cols][:, cols]) of the last block
-
-    @classmethod
-    def build(cls, C: np.ndarray, G: sp.csr_matrix, w: np.ndarray) -> NodalCompliance:
-        GC = np.asarray(G @ C)  # (3n, m)
-        H = np.asarray(G @ GC.T).T  # G C Gᵀ
-        return cls(C=C, G=G, w=w, HW=H * np.tile(w, 3)[None, :])
-
-    def block(self, cols: np.ndarray) -> np.ndarray:
-        """``HW[cols][:, cols]``, kept for the next call with the same ``cols`` (the
-        gather from the large matrix costs more than the Newton system's copy)."""
-        last = self._last
-        if last is None or not np.array_equal(last[0], cols):
-            last = (cols.copy(), self.HW[np.ix_(cols, cols)])
-            object.__setattr__(self, "_last", last)
-        return last[1]
-
-    def u(self, lam: np.ndarray) -> np.ndarray:
-        """Condensed displacements of the tractions ``lam`` (3, n)."""
-        return self.C @ (self.G.T @ (np.tile(self.w, 3) * lam.ravel()))
-
-
-class KeptFactors:
-    """The LU factors of one Newton system (:func:`semismooth`), kept across iterations
-    and solves.  A later system differs in the rows of the nodes whose state or slip
-    direction changed and in the few nodes that came into or out of contact: GMRES,
-    preconditioned by the kept factors (on the unknowns both systems share; a new
-    unknown by its diagonal), solves it in a few iterations of O(N²) instead of a new
-    O(N³) factorisation.  Counts ``factorisations`` and ``krylov`` solves."""
-
-    def __init__(self) -> None:
-        self.cols: np.ndarray | None = None
-        self.extra = -1
-        self.lu = None
-        self.factorisations = 0
-        self.krylov = 0
-
-    def solve(self, J: np.ndarray, b: np.ndarray, cols: np.ndarray) -> np.ndarray:
-        extra = J.shape[0] - cols.size
-        if self.lu is not None and extra == self.extra:
-            x = self._krylov(J, b, cols)
-            if x is not None:
-                self.krylov += 1
-                return x
-        self.lu = la.lu_factor(J, check_finite=False)
-        self.cols, self.extra = cols.copy(), extra
-        self.factorisations += 1
-        return la.lu_solve(self.lu, b, check_finite=False)
-
-    def _krylov(self, J: np.ndarray, b: np.ndarray, cols: np.ndarray) -> np.ndarray | None:
-        old, n_old = self.cols, self.lu[0].shape[0]
-        pos = np.searchsorted(old, cols)  # cols and old are sorted within their blocks
-        pos = np.minimum(pos, old.size - 1)
-        shared = old[pos] == cols
-        if not np.array_equal(np.sort(old), old) or shared.sum() < 0.9 * max(cols.size, old.size):
-            return None
-        i_new = np.concatenate([np.flatnonzero(shared), cols.size + np.arange(self.extra)])
-        i_old = np.concatenate([pos[shared], old.size + np.arange(self.extra)])
-        alone = np.flatnonzero(~shared)
-        diag = np.diag(J)[alone]
-        if np.any(diag == 0):
-            return None
-
-        def prec(v: np.ndarray) -> np.ndarray:
-            w = np.zeros(n_old)
-            w[i_old] = v[i_new]
-            z = la.lu_solve(self.lu, w, check_finite=False)
-            out = np.empty_like(v)
-            out[i_new] = z[i_old]
-            out[alone] = v[alone] / diag
-            return out
-
-        M = LinearOperator(J.shape, matvec=prec, dtype=float)
-        x, info = gmres(J, b, x0=prec(b), rtol=KRYLOV_RTOL, restart=KRYLOV_MAX, maxiter=1,
-                        M=M)
-        if info != 0 or not np.isfinite(x).all() or np.linalg.norm(J @ x - b) \
-                > 10 * KRYLOV_RTOL * max(float(np.linalg.norm(b)), 1e-300):
-            return None
-        return x
 
 
 @dataclass
@@ -196,7 +98,7 @@ class _Solver:
         diag = np.diag(op.HW).reshape(3, n)  # self-compliance of each node [mm/MPa]
         # components the surface cannot move (tangential on a symmetry plane, or every
         # tangential one of a model without tangential coupling): a stick condition
-        # there holds whatever the traction, which symmetry sets to 0
+        # there holds whatever the traction, which symmetry sets to 0 (:meth:`step`)
         self.dead = diag <= 1e-12 * diag.max()
         # r: the nodal stiffness, softened by the wear compliance like the penalty law's
         # (k_n / (1 + k_n c_w)): ⟨λ_n − r g̃_n⟩ then holds a pressed node's λ_n at g_n = 0
@@ -313,9 +215,8 @@ class _Solver:
         if keep_t:
             self._tangential_rows(J, b, s, L, act, nk, d_e, ecol, dcol)
         self._control_rows(J, b, L, act, cols, dlam, ecol)
-        # friction: a dead tangential component lies on a symmetry plane, λ = 0 there
-        fixed = np.concatenate([np.ones(na, bool)] * (len(comps) - 1) + [np.zeros(na, bool)])
-        dead = np.flatnonzero(self.dead.ravel()[cols] & fixed)
+        # a dead tangential component (friction) lies on a symmetry plane: λ = 0 there
+        dead = np.flatnonzero(self.dead.ravel()[cols] & (cols < 2 * n))
         J[dead] = 0.0
         J[dead, dead] = 1.0
         b[dead] = -s.lam.ravel()[cols[dead]]

@@ -1,0 +1,42 @@
+"""The nodal compliance of the contact points: the condensed compliance seen from the
+nodes, the elastic operator of the semi-smooth contact solve
+(:mod:`fem_reference.semismooth`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+
+@dataclass(frozen=True)
+class NodalCompliance:
+    """``HW = G C Gᵀ W``: the relative nodal displacements [x; y; z] per nodal traction
+    [x; y; z] of the points ``G``, ``w``; and ``C`` for the condensed displacements
+    ``u = C Gᵀ W λ``."""
+
+    C: np.ndarray
+    G: sp.csr_matrix
+    w: np.ndarray
+    HW: np.ndarray
+    _last: tuple | None = None  # (cols, HW[cols][:, cols]) of the last block
+
+    @classmethod
+    def build(cls, C: np.ndarray, G: sp.csr_matrix, w: np.ndarray) -> NodalCompliance:
+        GC = np.asarray(G @ C)  # (3n, m)
+        H = np.asarray(G @ GC.T).T  # G C Gᵀ
+        return cls(C=C, G=G, w=w, HW=H * np.tile(w, 3)[None, :])
+
+    def block(self, cols: np.ndarray) -> np.ndarray:
+        """``HW[cols][:, cols]``, kept for the next call with the same ``cols`` (the
+        gather from the large matrix costs more than the Newton system's copy)."""
+        last = self._last
+        if last is None or not np.array_equal(last[0], cols):
+            last = (cols.copy(), self.HW[np.ix_(cols, cols)])
+            object.__setattr__(self, "_last", last)
+        return last[1]
+
+    def u(self, lam: np.ndarray) -> np.ndarray:
+        """Condensed displacements of the tractions ``lam`` (3, n)."""
+        return self.C @ (self.G.T @ (np.tile(self.w, 3) * lam.ravel()))
