@@ -58,7 +58,6 @@ class _Laws:
 
     F: np.ndarray  # (3, n) [MPa]
     Fe: np.ndarray  # control residuals
-    d: np.ndarray  # (3, n) nodal relative displacements
     gn: np.ndarray
     gt: np.ndarray  # (n, 2)
     active: np.ndarray
@@ -151,7 +150,7 @@ class _Solver:
                 Fe.append(s.D[c] + ctrl.compliance_t * sym * (w @ lam[c]) - ctrl.shift[c])
             else:
                 Fe.append(w @ lam[c] - ctrl.Q[c] / sym)
-        return _Laws(F=F, Fe=np.asarray(Fe, float), d=d, gn=gn, gt=gt, active=active,
+        return _Laws(F=F, Fe=np.asarray(Fe, float), gn=gn, gt=gt, active=active,
                      stick=stick, slip=slip, rho=rho, tstar=tstar, nrm=nrm)
 
     def merit(self, s: _State, L: _Laws) -> float:
