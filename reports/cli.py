@@ -171,7 +171,8 @@ def cmd_list(args: argparse.Namespace) -> int:
     print()
     for s in solvers.names():
         ok, reason = solvers.available(s)
-        print(f"solver {s:9s} {'available' if ok else 'unavailable: ' + reason}")
+        kind = " (plugin)" if s in solvers.PLUGINS else ""
+        print(f"solver {s:9s} {'available' if ok else 'unavailable: ' + reason}{kind}")
     return 0
 
 
@@ -369,6 +370,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         args = build_parser().parse_args(argv)
     except SystemExit as exc:  # --help (0) or a bad flag (2)
         return int(exc.code or 0)
+    for line in solvers.PLUGIN_ERRORS:  # a plugin left out: one line, the others run on
+        print(f"{PROG}: warning: {line}", file=sys.stderr)
     try:
         return COMMANDS[args.command](args)
     except (UserError, CaseError) as exc:

@@ -18,7 +18,7 @@ refine or coarsen its discretisation for a grid study (``refine(case, factor)``:
 case grid for ``ic``, ``fem.h`` for ``fem``, none for closed forms).  Packages
 are imported only when used, so a solver whose package fails to import is reported as
 unavailable without breaking the others.  Adding a solver is one record here and one
-package.
+package, or an installed plugin (:mod:`reports.registry.plugins`).
 
 Error budgets (at the resolutions of the bundled cases, quick grids included), tightened
 to the errors measured on the quick chain (main f6ca390, 697 gated default-tolerance
@@ -90,16 +90,15 @@ half-space solver against Mindlin–Deresiewicz on the bundled ``fretting_isotro
 
 from __future__ import annotations
 
-import importlib
 import math
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field, replace
-from typing import Any
+from collections.abc import Callable
+from dataclasses import replace
 
 from cases.model import Case, CaseError
 from cases.result import Cost, RunResult
-from reports.registry import relations
+from reports.registry import plugins, relations
 from reports.registry.errors import SolverUnavailable
+from reports.registry.record import SolverRecord
 
 SolveFn = Callable[..., RunResult]
 
@@ -144,11 +143,6 @@ def fem_budget(quantity: str, metric: str) -> float:
 ARGATOV_P_MAX = 0.025
 
 
-def no_case_term(case: Case, quantity: str, metric: str) -> float:
-    """A solver whose budget does not depend on the kind of case."""
-    return 0.0
-
-
 def closed_form_case_term(case: Case, quantity: str, metric: str) -> float:
     """What a closed form states beyond its sampling budget for a kind of case: the
     asymptotic worn-pin pressure (:data:`ARGATOV_P_MAX`)."""
@@ -174,31 +168,16 @@ def closed_form_budget(quantity: str, metric: str) -> float:
 FEM_BLOCK_TERMS = {"p_max": 2 * 0.0016, "vm_max": 2 * 0.0096, "vm_max_below": 2 * 0.0096}
 
 
-def no_model_form(quantity: str, metric: str) -> float:
-    """The solver models the half-space problem itself: no model-form term."""
-    return 0.0
-
-
 def fem_model_form(quantity: str, metric: str) -> float:
     """Model-form term of the FEM (:data:`FEM_BLOCK_TERMS`) for the ``rel`` scalars it
     was measured for; NaN for the others (no uncertainty-based tolerance without it)."""
     return FEM_BLOCK_TERMS.get(quantity, math.nan) if metric == "rel" else math.nan
 
 
-def grid_cell(case: Case) -> float:
-    """The larger cell side of the case's grid [mm]."""
-    return max(case.grid.dx, case.grid.dy)
-
-
 def fem_cell(case: Case) -> float:
     """The FEM's element size at the contact surface [mm]: ``fem.h_surface`` (else
     ``fem.h``) in units of a0."""
     return case.fem.h_contact * case.hertz_scales[0]
-
-
-def grid_label(case: Case) -> str:
-    """The case's grid, ``41x41``."""
-    return f"{case.grid.nx}x{case.grid.ny}"
 
 
 def fem_label(case: Case) -> str:
@@ -239,56 +218,10 @@ def refine_fem(case: Case, factor: float) -> Case:
     return case.with_changes(fem=case.fem.refined(factor))
 
 
-@dataclass(frozen=True)
-class SolverRecord:
-    """What the reports know of one solver (module doc)."""
-
-    name: str
-    package: str  # importable module exposing solve() and supports()
-    budget: Callable[[str, str], float] = grid_budget
-    style: Mapping[str, Any] = field(default_factory=lambda: {"ls": "-."})
-    cell_size: Callable[[Case], float] = grid_cell
-    #: how the discretisation of a case is named in tables (``41x41``, ``fem.h=0.125``)
-    label: Callable[[Case], str] = grid_label
-    #: the same case with cells ``factor`` times smaller (coarser below 1), for grid
-    #: studies (``run --convergence``); None: the solver has no grid to refine
-    refine: Callable[[Case, float], Case] | None = None
-    #: what the budget adds for a kind of case (case, quantity, metric) -> term, e.g. a
-    #: closed form that is an asymptotic limit there
-    case_term: Callable[[Case, str, str], float] = no_case_term
-    #: relative error of what the solver models differently from the half-space problem
-    #: (quantity, metric) -> term, for uncertainty-based tolerances (reports.studies.uncertainty)
-    model_form: Callable[[str, str], float] = no_model_form
-    closed_form: bool = False
-    solve_attr: str = "solve"
-    supports_attr: str = "supports"
-    estimate_attr: str = "estimate"  # optional: Cost of a case before any work
-    #: optional: why a run that names no solvers leaves this one out on a case (None: it
-    #: runs); the solver still runs when requested with --solver
-    default_attr: str = "by_default"
-    #: a metamorphic relation of the solver ``base`` (reports.registry.relations): it runs
-    #: the base on the transformed case, wherever the base runs, and pairs with it only
-    relation: relations.Relation | None = None
-    base: str = ""
-
-    def entry(self, attr: str) -> Callable:
-        """The callable ``attr`` of the package; SolverUnavailable if it cannot load."""
-        try:
-            module = importlib.import_module(self.package)
-        except ImportError as exc:
-            raise SolverUnavailable(f"solver {self.name!r} is not available: cannot import "
-                                    f"{self.package} ({exc})") from None
-        fn = getattr(module, attr, None)
-        if not callable(fn):
-            raise SolverUnavailable(f"solver {self.name!r} is not available: {self.package} "
-                                    f"has no entry point {attr}()")
-        return fn
-
-
 #: solver name -> record; the order is the order of columns, rows and pairs (the second
 #: solver of a pair is its reference).
 REGISTRY: dict[str, SolverRecord] = {
-    "ic": SolverRecord("ic", "halfspace", refine=refine_grid,
+    "ic": SolverRecord("ic", "halfspace", budget=grid_budget, refine=refine_grid,
                        style={"color": "C0", "ls": "-", "marker": "o", "ms": 3}),
     "fem": SolverRecord("fem", "fem_reference", budget=fem_budget, cell_size=fem_cell,
                         label=fem_label,
@@ -304,6 +237,10 @@ REGISTRY.update({
         f"ic+{rel.name}", "halfspace", budget=relations.budget(rel, grid_budget),
         style={"color": "C2", "ls": "-", "marker": None, "lw": 0.8}, relation=rel,
         base="ic") for rel in relations.RELATIONS})
+#: the installed plugins (reports.registry.plugins) come first: every pair they are in
+#: has a built-in solver as its reference; one line per plugin left out, and why
+PLUGINS, PLUGIN_ERRORS = plugins.load(REGISTRY)
+REGISTRY = {**PLUGINS, **REGISTRY}
 
 
 #: what the reference of a pair is (metrics.csv's column ``oracle``)
@@ -337,7 +274,7 @@ def names() -> list[str]:
 def record(name: str) -> SolverRecord:
     """The record of solver ``name``; a name not registered (results written by another
     version) gets a grid solver's defaults."""
-    return REGISTRY.get(name) or SolverRecord(name, package="")
+    return REGISTRY.get(name) or SolverRecord(name, package="", budget=grid_budget)
 
 
 def resolve(name: str) -> SolveFn:
@@ -367,7 +304,14 @@ def estimate(name: str, case: Case) -> Cost | None:
         fn = rec.entry(rec.estimate_attr)
     except SolverUnavailable:
         return None
-    return fn(case if rec.relation is None else rec.relation.transform(case))
+    case = case if rec.relation is None else rec.relation.transform(case)
+    if name not in PLUGINS:
+        return fn(case)
+    try:
+        cost = fn(case)
+    except Exception:  # a plugin's estimate is advice: without it, the run has no deadline
+        return None
+    return cost if isinstance(cost, Cost) else None
 
 
 def not_by_default(name: str, case: Case) -> str | None:
@@ -378,7 +322,7 @@ def not_by_default(name: str, case: Case) -> str | None:
         fn = rec.entry(rec.default_attr)
     except SolverUnavailable:
         return None
-    reason = fn(case)
+    reason = _ask(name, fn, case)
     return None if reason is None else str(reason)
 
 
@@ -389,5 +333,16 @@ def unsupported(name: str, case: Case) -> str | None:
         if (why := relations.applies(case)) is not None:
             return why
         case = rec.relation.transform(case)
-    reason = rec.entry(rec.supports_attr)(case)
+    reason = _ask(name, rec.entry(rec.supports_attr), case)
     return None if reason is None else str(reason)
+
+
+def _ask(name: str, fn: Callable[[Case], object], case: Case) -> object:
+    """``fn(case)``; for a plugin, what it raises becomes the reason it is left out of
+    the case (the other solvers run on)."""
+    if name not in PLUGINS:
+        return fn(case)
+    try:
+        return fn(case)
+    except Exception as exc:  # anything a foreign package raises
+        return f"solver plugin {name!r}: {fn.__name__}() raised {type(exc).__name__}: {exc}"

@@ -33,6 +33,7 @@ from cases.model import Case, CaseError
 from cases.schema import SCHEMA, read_toml
 from reports.registry import solvers
 from reports.registry.errors import UserError
+from reports.registry.record import grid_cell
 from reports.registry.tolerances import check_keys
 from reports.run.deadline import deadline
 from reports.run.plan import Limits, check_fits
@@ -184,7 +185,7 @@ class Unit:
         r = self.request
         case = self.case(r.lo)
         rec = solvers.REGISTRY[self.solver]
-        cell = solvers.grid_cell(case) if rec.closed_form else rec.cell_size(case)
+        cell = grid_cell(case) if rec.closed_form else rec.cell_size(case)
         row = dict.fromkeys(COLUMNS, math.nan)
         row.update(case=case.name, point=self.point_label, event=r.event, param=r.param,
                    at=self.at_label, quick=r.quick, solver=self.solver,

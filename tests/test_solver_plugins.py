@@ -1,0 +1,153 @@
+"""Solver plugins by entry point (reports/registry/plugins.py): the example plugin of
+``docs/examples/solver_plugin`` installed as a distribution (its package and a
+``.dist-info`` with ``entry_points.txt`` on the path) is listed, run, compared with the
+built-in solvers, reported and gated; a wrong one fails the gate; a broken one is left
+out with one line naming it and the built-in chain runs unchanged."""
+
+from __future__ import annotations
+
+import importlib
+import json
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from reports.cli import main
+from reports.registry import plugins, solvers
+from reports.store import layout
+
+ROOT = Path(__file__).resolve().parent.parent
+EXAMPLE = ROOT / "docs" / "examples" / "solver_plugin"
+ENTRY = "hertz_example = hertz_example:record"
+RUN = ["run", "hertz", "--quick", "--no-progress"]
+
+
+def _site(tmp_path: Path, entry: str, edit: tuple[str, str] | None) -> Path:
+    """The example distribution installed into a directory of its own (what pip writes:
+    the package and its .dist-info with the entry point)."""
+    site = tmp_path / "site"
+    shutil.copytree(EXAMPLE / "hertz_example", site / "hertz_example")
+    if edit is not None:
+        module = site / "hertz_example" / "__init__.py"
+        text = module.read_text()
+        assert edit[0] in text
+        module.write_text(text.replace(*edit))
+    info = site / "contact_vv_hertz_example-0.1.0.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: contact-vv-hertz-example\n"
+                                   "Version: 0.1.0\n")
+    (info / "entry_points.txt").write_text(f"[{plugins.GROUP}]\n{entry}\n")
+    return site
+
+
+@pytest.fixture
+def install(tmp_path, monkeypatch):
+    """``install(entry=ENTRY, edit=None) -> lines left out``: the example installed and the
+    registry loaded again as at import (the built-in records, then the plugins found)."""
+    def _install(entry: str = ENTRY, edit: tuple[str, str] | None = None) -> list[str]:
+        monkeypatch.syspath_prepend(str(_site(tmp_path, entry, edit)))
+        monkeypatch.delitem(sys.modules, "hertz_example", raising=False)
+        importlib.invalidate_caches()
+        builtin = {k: v for k, v in solvers.REGISTRY.items() if k not in solvers.PLUGINS}
+        found, errors = plugins.load(builtin)
+        monkeypatch.setattr(solvers, "REGISTRY", {**found, **builtin})
+        monkeypatch.setattr(solvers, "PLUGINS", found)
+        monkeypatch.setattr(solvers, "PLUGIN_ERRORS", errors)
+        return errors
+    return _install
+
+
+def _metrics(out: Path) -> pd.DataFrame:
+    return pd.read_csv(out / "hertz" / "metrics.csv")
+
+
+def test_plugin_is_run_compared_reported_and_gated(tmp_path, install, capsys):
+    assert install() == []
+    assert main(["list"]) == 0
+    assert "solver hertz_example available (plugin)" in capsys.readouterr().out
+    out = tmp_path / "res"
+    assert main([*RUN, "--solver", "hertz_example,ic,analytic", "--out", str(out)]) == 0
+    m = _metrics(out)
+    ours = m[m["pair"].str.startswith("hertz_example-")]
+    # the plugin is the first of its pairs: the built-in solvers are its references
+    assert set(ours["pair"]) == {"hertz_example-ic", "hertz_example-analytic"}
+    gated = ours[ours["status"] == "gated"]
+    assert {"p_max", "contact_area", "a_x", "p_n"} <= set(gated["quantity"])
+    assert gated["passed"].all()
+    p_max = gated[(gated["pair"] == "hertz_example-analytic") & (gated["quantity"] == "p_max")]
+    assert p_max["value"].abs().max() < 1e-12  # the same closed form
+    assert main(["report", "--out", str(out)]) == 0
+    assert "hertz_example-ic" in (out / "index.html").read_text()
+    assert main(["gate", "--out", str(out)]) == 0
+
+
+def test_a_wrong_plugin_fails_the_gate(tmp_path, install, capsys):
+    install(edit=("SCALE = 1.0", "SCALE = 1.1"))
+    out = tmp_path / "res"
+    assert main([*RUN, "--solver", "hertz_example,ic,analytic", "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out)]) == 1
+    fails = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("FAIL")]
+    assert any("hertz_example-analytic p_max rel" in f for f in fails)
+    assert any("hertz_example-ic p_max rel" in f for f in fails)
+    assert not any(" ic-analytic " in f for f in fails)
+
+
+@pytest.mark.parametrize("entry, edit, why", [
+    ("hertz_example = no_such_package:record", None, "cannot load it: ModuleNotFoundError"),
+    ("hertz_example = hertz_example:budget", None, "cannot load it: TypeError"),
+    ("hertz_example = hertz_example:SCALE", None, "gives a float, not a"),
+    ("ic = hertz_example:record", None, "taken by a built-in solver"),
+    ("hertz-example = hertz_example:record", None, "lower-case letters, digits and '_'"),
+    ("other = hertz_example:record", None, "its record is named 'hertz_example'"),
+    (ENTRY, ("import math\n", "import math\nraise RuntimeError('half installed')\n"),
+     "cannot load it: RuntimeError: half installed"),
+])
+def test_a_broken_plugin_is_left_out_naming_it(tmp_path, install, capsys, entry, edit, why):
+    clean = tmp_path / "clean"
+    assert main([*RUN, "--solver", "ic,analytic", "--out", str(clean)]) == 0
+    errors = install(entry, edit)
+    assert len(errors) == 1 and why in errors[0]
+    assert errors[0].startswith(f"solver plugin {entry.split(' = ')[0]!r}")
+    assert "hertz_example" not in solvers.names()
+    capsys.readouterr()
+    out = tmp_path / "res"
+    assert main([*RUN, "--solver", "ic,analytic", "--out", str(out)]) == 0
+    err = capsys.readouterr().err.splitlines()
+    assert [ln for ln in err if "plugin" in ln] == [f"contact-vv: warning: {errors[0]}"]
+    keys = ["pair", "quantity", "metric", "step"]
+    got = _metrics(out).sort_values(keys).reset_index(drop=True)
+    want = _metrics(clean).sort_values(keys).reset_index(drop=True)
+    pd.testing.assert_frame_equal(got, want)
+
+
+def test_a_plugin_whose_supports_raises_is_skipped_there(tmp_path, install):
+    install(edit=('    f = case.friction\n', '    raise KeyError("mu3")\n'))
+    out = tmp_path / "res"
+    assert main([*RUN, "--solver", "hertz_example,ic,analytic", "--out", str(out)]) == 0
+    skipped = json.loads((out / "hertz" / layout.MANIFEST).read_text())["skipped"]
+    assert skipped["hertz_example"].startswith(
+        "solver plugin 'hertz_example': supports() raised KeyError: 'mu3'")
+    assert set(_metrics(out)["pair"]) == {"ic-analytic"}
+
+
+def test_the_console_script_loads_plugins_at_start(tmp_path):
+    """A fresh process: the entry points are read when the registry is imported."""
+    env = dict(os.environ)
+    for entry, expect in ((ENTRY, "solver hertz_example available (plugin)"),
+                          ("hertz_example = gone:record", "contact-vv: warning: solver "
+                           "plugin 'hertz_example' (gone:record of contact-vv-hertz-example "
+                           "0.1.0) left out: cannot load it")):
+        shutil.rmtree(tmp_path / "site", ignore_errors=True)
+        site = _site(tmp_path, entry, None)
+        env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(site), env.get("PYTHONPATH")]))
+        done = subprocess.run([sys.executable, "-m", "reports", "list"], env=env,
+                              capture_output=True, text=True, cwd=tmp_path, timeout=120)
+        assert done.returncode == 0
+        assert expect in done.stdout + done.stderr
+        assert "solver ic        available" in done.stdout
