@@ -8,6 +8,7 @@ from __future__ import annotations
 import dataclasses
 import importlib.util
 import json
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -69,6 +70,18 @@ def test_the_chain_reports_and_gates_tamaas(tmp_path, capsys):
     assert "tamaas-analytic" in page and "sliding wear: Tamaas has no wear law" in page
     capsys.readouterr()
     assert main(["gate", "--out", str(out)]) == 0
+    verdict = _verdict_script().table(out, "test")  # the benchmarks/README.md table
+    assert "| hertz | p_max | rel | " in verdict and " ✗**" not in verdict
+    assert "- `pin_on_disk`: tamaas — sliding wear: Tamaas has no wear law" in verdict
+
+
+def _verdict_script():
+    spec = importlib.util.spec_from_file_location(
+        "tamaas_verdict", Path(__file__).resolve().parent.parent / "benchmarks" /
+        "tamaas_verdict.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
 
 
 def test_the_gate_catches_a_wrong_frame(tmp_path, monkeypatch, capsys):
@@ -81,6 +94,7 @@ def test_the_gate_catches_a_wrong_frame(tmp_path, monkeypatch, capsys):
     assert main(["gate", "--out", str(out)]) == 1
     fails = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("FAIL")]
     assert any("tamaas-analytic vm_xz" in f and "mu=0.5" in f for f in fails), fails
+    assert "| sliding_friction | vm_xz | l2 | **" in _verdict_script().table(out, "seeded")
 
 
 def test_the_periodic_images_fail_the_periodic_solver(tmp_path):
