@@ -30,7 +30,8 @@ def format_table(request: Request, rows: list[dict[str, Any]]) -> str:
     r = request
     head = (f"threshold of {r.event} in {r.param} for {r.case}"
             + (" (quick)" if r.quick else "") + f": bracket [{r.lo:g}, {r.hi:g}], "
-            f"resolution {r.resolution:g}" + (f", at {rows[0]['at']}" if rows else ""))
+            f"resolution {r.resolution:g}" + (f", at {at}" if (at := next(
+                (row["at"] for row in rows if row["at"]), "")) else ""))
     lines = [head, f"{'solver':9s} {'point':10s} {'grid':14s} {'cell [mm]':>9s} "
              f"{'threshold':>10s} {'±':>9s} {'evals':>5s} {'grid shift':>10s} "
              f"{'wall [s]':>8s}  status"]
