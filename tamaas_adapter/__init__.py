@@ -22,13 +22,13 @@ import importlib.util
 from collections.abc import Callable
 
 from cases.model import Case
-from cases.result import RunResult, StepResult
+from cases.result import Cost, RunResult, StepResult
 from reports.registry.record import SolverRecord
 
 from .support import supports, supports_periodic
 
 __all__ = ["record", "record_periodic", "solve", "solve_periodic", "supports",
-           "supports_periodic", "by_default"]
+           "supports_periodic", "by_default", "estimate", "estimate_periodic"]
 
 
 def grid_budget(quantity: str, metric: str) -> float:
@@ -47,28 +47,42 @@ def refine_grid(case: Case, factor: float) -> Case:
     return refine(case, factor)
 
 
-def _record(name: str, solve_attr: str, supports_attr: str, style: dict) -> SolverRecord | None:
+def _record(name: str, suffix: str, style: dict) -> SolverRecord | None:
     if importlib.util.find_spec("tamaas") is None:
         return None  # the [peers] extra is not installed: no plugin
     return SolverRecord(name, __name__, budget=grid_budget, refine=refine_grid,
-                        solve_attr=solve_attr, supports_attr=supports_attr, style=style)
+                        solve_attr="solve" + suffix, supports_attr="supports" + suffix,
+                        estimate_attr="estimate" + suffix, style=style)
 
 
 def record() -> SolverRecord | None:
     """The ``tamaas`` solver (DC-FFT normal contact, PolonskyKeerTan partial slip)."""
-    return _record("tamaas", "solve", "supports",
-                   {"color": "C5", "ls": "-", "marker": "v", "ms": 3})
+    return _record("tamaas", "", {"color": "C5", "ls": "-", "marker": "v", "ms": 3})
 
 
 def record_periodic() -> SolverRecord | None:
     """The ``tamaas_periodic`` solver (the periodic operator on the case grid)."""
-    return _record("tamaas_periodic", "solve_periodic", "supports_periodic",
+    return _record("tamaas_periodic", "_periodic",
                    {"color": "C6", "ls": "-.", "marker": "x", "ms": 3})
 
 
 def by_default(case: Case) -> str:
     """A peer under verification runs only when named."""
     return "a peer code under verification: name it with --solver"
+
+
+def estimate(case: Case) -> Cost:
+    """Peak memory and wall time of ``tamaas`` on ``case`` (:mod:`tamaas_adapter.cost`)."""
+    from .cost import estimate as _estimate
+
+    return _estimate(case, periodic=False)
+
+
+def estimate_periodic(case: Case) -> Cost:
+    """Peak memory and wall time of ``tamaas_periodic`` on ``case``."""
+    from .cost import estimate as _estimate
+
+    return _estimate(case, periodic=True)
 
 
 def solve(case: Case, *, progress: bool = False,

@@ -126,3 +126,13 @@ def test_tamaas_runs_only_when_named():
     assert solvers.unsupported("tamaas", case) is None
     worn = load_bundled("fretting_orthotropic", quick=True)
     assert "wear" in solvers.unsupported("tamaas", worn)
+
+
+def test_the_planner_refuses_a_run_beyond_its_memory(tmp_path, capsys):
+    """The plugin's estimate (tamaas_adapter/cost.py) reaches the planner: article-size
+    Cattaneo–Mindlin takes about 9 GB in Tamaas's volume operators (measured 9.06 GB)."""
+    assert main(["run", "cattaneo_mindlin", "--no-progress", "--solver", "tamaas,analytic",
+                 "--max-memory", "4", "--out", str(tmp_path / "res")]) == 2
+    err = capsys.readouterr().err
+    assert "solver tamaas would need about" in err and "reduce grid.nx, grid.ny, stress.nz" in err
+    assert not (tmp_path / "res" / "cattaneo_mindlin").exists()
