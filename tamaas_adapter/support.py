@@ -12,6 +12,11 @@ cannot be made to model, case by case:
 - full sliding on ``tamaas_periodic`` (the sliding law needs no periodic solve: it
   runs on ``tamaas``).
 
+Tamaas's other frictional solver, Condat, solves an associated Coulomb law (its normal
+and tangential slips coupled), not the Coulomb law of the cases: the plugins do not use
+it.  Full sliding needs no frictional solve: the sliding law on Tamaas's pressure
+(PolonskyKeerTan at Q = μP would be the degenerate edge of its feasible set).
+
 Partial slip under a tangential load (Cattaneo–Mindlin): PolonskyKeerTan on Tamaas's
 periodic surface model, with ν = 0.5 and E = 0.75 E* so that, as for two identical
 bodies, the normal and tangential problems do not couple; the tangential compliance is
