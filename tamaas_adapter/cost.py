@@ -18,7 +18,7 @@ from cases.result import Cost
 
 from . import contact, volume
 
-BYTES_PER_VOLUME_POINT = 520.0  # measured 462-650 (quick and article-size runs)
+BYTES_PER_VOLUME_POINT = 520.0  # above most runs measured (benchmarks/README.md)
 BASE_BYTES = 0.15e9  # interpreter, numpy, Tamaas
 SECONDS_PER_VOLUME_POINT = 1e-6
 SECONDS_PER_PKT_CELL = 1e-6  # one PolonskyKeerTan iteration, per cell of its cell

@@ -7,10 +7,9 @@ solver the tractions are set on a domain padded with zeros (:func:`padding`) to 
 of at least :data:`PERIOD_PER_WIDTH` times the loaded width, and their mean is removed:
 the mean traction of a periodic half-space is a uniform stress state (σ_zz = −p̄ at
 every depth) that a finite load does not cause, and removing it removes the images'
-leading term.  On the quick Cattaneo–Mindlin grid (contact 0.3 mm wide on 0.4 mm) the
-σ_VM maximum against Mindlin–Hamilton moved from +3.3 % (twice the grid, mean kept) to
-within 1 % (benchmarks/README.md, "Tamaas through the gates").  For ``tamaas_periodic``
-the stresses are the periodic problem's own, on the case grid.
+leading term (the measured effect of both: benchmarks/README.md, "Tamaas through the
+gates").  For ``tamaas_periodic`` the stresses are the periodic problem's own, on the
+case grid.
 
 The stresses of the reported body (``stress.body``, its ν) are those of the half-space
 under the traction that body's surface carries (:data:`FRAME`).
