@@ -11,8 +11,6 @@ magnitude, not calibrated for a deadline.
 
 from __future__ import annotations
 
-import math
-
 from cases.model import Case
 from cases.result import Cost
 
@@ -28,9 +26,7 @@ def estimate(case: Case, periodic: bool) -> Cost:
     """Peak memory and wall time of one Tamaas run of ``case`` (module doc)."""
     g, st = case.grid, case.stress
     a0 = case.hertz_scales[0]
-    width = 2.0 * a0 + max(g.dx, g.dy)
-    pad = 1 if periodic else max(
-        2, math.ceil(volume.PERIOD_PER_WIDTH * width / min(g.Lx, g.Ly) - 1e-9))
+    pad = 1 if periodic else volume.grids_for(case, 2.0 * a0 + max(g.dx, g.dy))
     points = st.nz * pad**2 * g.nx * g.ny
     seconds = points * SECONDS_PER_VOLUME_POINT
     if case.load.tangential_mode == "load":

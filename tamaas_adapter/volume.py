@@ -40,15 +40,20 @@ FRAME = {"a": 1.0, "b": -1.0}
 PERIOD_PER_WIDTH = 8.0
 
 
+def grids_for(case: Case, width: float) -> int:
+    """How many case grids the padded domain spans along each side (at least 2) for a
+    loaded ``width`` [mm]: its period is at least :data:`PERIOD_PER_WIDTH` widths."""
+    g = case.grid
+    return max(2, math.ceil(PERIOD_PER_WIDTH * width / min(g.Lx, g.Ly) - 1e-9))
+
+
 def padding(case: Case, p_n: np.ndarray) -> int:
-    """How many case grids the padded domain spans along each side (at least 2): its
-    period is at least :data:`PERIOD_PER_WIDTH` loaded widths."""
+    """:func:`grids_for` the width of the cells ``p_n`` loads."""
     g = case.grid
     rows, cols = np.nonzero(p_n > 0)
     if rows.size == 0:
         return 2
-    width = max((np.ptp(rows) + 1) * g.dx, (np.ptp(cols) + 1) * g.dy)
-    return max(2, math.ceil(PERIOD_PER_WIDTH * width / min(g.Lx, g.Ly) - 1e-9))
+    return grids_for(case, max((np.ptp(rows) + 1) * g.dx, (np.ptp(cols) + 1) * g.dy))
 
 
 def stress_block(case: Case, p_x: np.ndarray, p_y: np.ndarray, p_n: np.ndarray,
