@@ -141,13 +141,18 @@ def fem_budget(quantity: str, metric: str) -> float:
 #: is still 2.5 % below the converged pressure (half-space 81² and 161² agree to 0.4 %):
 #: the closed form's model-form error, on every worn pin
 ARGATOV_P_MAX = 0.025
+#: Argatov's worn-pin depth √(i_w P s / (π R)) is asymptotic too: the converged depth of
+#: the frictionless pin (41², 81², 121² agree to 0.03 %) is 1.62 % below it at 10.5
+#: transition distances, 1.30 % at 14 and 0.76 % at 28 (benchmarks/README.md)
+ARGATOV_W_MAX = 0.017
 
 
 def closed_form_case_term(case: Case, quantity: str, metric: str) -> float:
     """What a closed form states beyond its sampling budget for a kind of case: the
-    asymptotic worn-pin pressure (:data:`ARGATOV_P_MAX`)."""
-    if case.kind == "sliding_wear" and (quantity, metric) == ("p_max", "rel"):
-        return ARGATOV_P_MAX
+    asymptotic worn-pin pressure and depth (:data:`ARGATOV_P_MAX`,
+    :data:`ARGATOV_W_MAX`)."""
+    if case.kind == "sliding_wear" and metric == "rel":
+        return {"p_max": ARGATOV_P_MAX, "w_max": ARGATOV_W_MAX}.get(quantity, 0.0)
     return 0.0
 
 

@@ -232,7 +232,8 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
         metrics = verdict.decide(
             rows,
             grid=None if study is None else gridstudy.flags(rows, study.table),
-            uncertainty=None if study is None else uncertainty.values(rows, study.table),
+            uncertainty=None if study is None else uncertainty.values(
+                rows, study.table, {c.param: c for c in plan.points}),
             jump=None if jumps is None else jumpstudy.flags_jump(rows, jumps.table))
     else:  # a single solver: the header only
         metrics = pd.DataFrame(columns=verdict.METRICS_COLUMNS + (

@@ -18,7 +18,8 @@ agree when their difference lies within the *combined* uncertainty of the pair
     3 (max f − min f) / |f1| (J. Comput. Phys. 262 (2014) 104–130), since no order and
     no Richardson extrapolation can be trusted;
   - ``not converged``, or no study of that solver: none — the row keeps its budget;
-  - a closed form (no grid): its stated accuracy, the budget of its registry record;
+  - a closed form (no grid): its stated accuracy, the budget of its registry record plus
+    what it states for the kind of case (``case_term``: an asymptotic limit's deficit);
 
 - m_s, the model-form term of solver s: what it models differently from the half-space
   problem (the FEM's finite block, measured by enlarging it), its record's
@@ -39,11 +40,13 @@ budgets.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
+from cases.model import Case
 from reports.registry import solvers
 from reports.studies import convergence
 
@@ -78,21 +81,25 @@ def combined(terms: list[float]) -> float:
 
 
 def pair_uncertainty(pair: str, param: str, step: int, quantity: str, metric: str,
-                     rows: dict[tuple[str, str, int, str], object]) -> float:
+                     rows: dict[tuple[str, str, int, str], object],
+                     case: Case | None = None) -> float:
     """U of one metric row (Eq. U1); NaN when a numerical solver of the pair has no
-    usable study for it."""
+    usable study for it.  A closed form's accuracy is its budget plus what it states for
+    the kind of case (its record's ``case_term``, e.g. an asymptotic limit)."""
     terms = []
     for solver in pair.split("-"):
         rec = solvers.record(solver)
         if rec.closed_form:
-            terms.append(rec.budget(quantity, metric))
+            terms.append(rec.budget(quantity, metric)
+                         + (rec.case_term(case, quantity, metric) if case else 0.0))
         else:
             terms.append(solver_uncertainty(rows.get((solver, param, step, quantity))))
         terms.append(rec.model_form(quantity, metric))
     return combined(terms)
 
 
-def values(metrics: pd.DataFrame, frame: pd.DataFrame | None) -> np.ndarray | None:
+def values(metrics: pd.DataFrame, frame: pd.DataFrame | None,
+           cases: Mapping[str, Case] | None = None) -> np.ndarray | None:
     """U of every ``rel`` row of ``metrics`` from the grid-study table ``frame`` (Eq. U1;
     NaN where none can be formed), for :func:`reports.compare.verdict.decide`, which
     tightens the tolerance of a row still gated to min(U, tolerance); None without a
@@ -108,5 +115,6 @@ def values(metrics: pd.DataFrame, frame: pd.DataFrame | None) -> np.ndarray | No
         if metric in STUDIED_METRICS:
             u[k] = pair_uncertainty(str(metrics["pair"].iat[k]), param.iat[k],
                                     int(metrics["step"].iat[k]),
-                                    str(metrics["quantity"].iat[k]), metric, rows)
+                                    str(metrics["quantity"].iat[k]), metric, rows,
+                                    (cases or {}).get(param.iat[k]))
     return u
