@@ -47,4 +47,34 @@ def surface_jump(nu: float):
     return _surface_jump(nu)
 
 
-__all__ = ["solve", "supports", "surface_jump"]
+def axis_vm_max(nu: float) -> tuple[float, float]:
+    """(σ_VM,max / p0, z / a) of the Hertz contact on its axis
+    (:func:`analytic.hertz.axis_vm_max`)."""
+    from .hertz import axis_vm_max as _axis_vm_max
+
+    return _axis_vm_max(nu)
+
+
+def axis_von_mises(z, a: float, p0: float, nu: float):
+    """σ_VM on the Hertz contact's axis at depths z (:func:`analytic.hertz.axis_von_mises`)."""
+    from .hertz import axis_von_mises as _axis_von_mises
+
+    return _axis_von_mises(z, a, p0, nu)
+
+
+def worn_pin(s, a0: float, i1: float, i2: float, theta_deg: float, P: float, R: float
+             ) -> dict[str, object]:
+    """The worn pin's closed forms at sliding distances s (:mod:`analytic.wear`): Archard's
+    volume, Argatov's radius, wear depth and uniform pressure, Hegadekatte's wear depth,
+    with the orthotropic i_w(θ) of formulation Eq. 19."""
+    from . import wear
+
+    i_w = wear.wear_coefficient(i1, i2, theta_deg)
+    return {"i_w": i_w, "volume": wear.archard_volume(s, i_w, P),
+            "a": wear.argatov_radius(s, a0, i_w, P, R),
+            "w": wear.argatov_wear_depth(s, a0, i_w, P, R),
+            "p_max": wear.argatov_p_max(s, a0, i_w, P, R),
+            "w_cap": wear.hegadekatte_wear_depth(s, i_w, P, R)}
+
+
+__all__ = ["axis_vm_max", "axis_von_mises", "solve", "supports", "surface_jump", "worn_pin"]

@@ -126,7 +126,16 @@ def build_parser() -> argparse.ArgumentParser:
     common(sweep, solving=True)
 
     _threshold_parser(sub, common)
+    _article_parser(sub, common)
     return parser
+
+
+def _article_parser(sub: Any, common: Any) -> None:
+    """``contact-vv article``: the source article's claims judged (reports/run/article.py)."""
+    art = sub.add_parser("article", help="judge the source article's claims from the results "
+                         "in DIR (running what is missing) and write DIR/article.html")
+    art.add_argument("--claims", metavar="N,M-K", help="the claims to judge (default: all)")
+    common(art, solving=True)
 
 
 def _threshold_parser(sub: Any, common: Any) -> None:
@@ -335,6 +344,30 @@ def cmd_threshold(args: argparse.Namespace) -> int:
     return 0
 
 
+def cmd_article(args: argparse.Namespace) -> int:
+    from reports.render.article import judge_and_write
+    from reports.run import article
+    from reports.run.plan import select_solvers
+    from reports.run.threshold_table import stderr_log
+    from reports.studies.claims import numbers
+
+    claims = numbers(args.claims)
+    if args.overrides:
+        raise UserError("--set: article runs the article's cases as the case files hold them")
+    requested = _solver_list(args.solver)
+    work = article.plan(args.out, args.quick, select_solvers(requested, relations=False)[0],
+                        _limits(args), claims, bool(requested))
+    print(work.describe())
+    code = article.execute(work, args.out, progress=False if args.no_progress else None,
+                           report=lambda runs: _report_runs(runs, args.out),
+                           log=None if args.no_progress else stderr_log)
+    path, findings = judge_and_write(args.out, args.quick, claims)
+    for n, f in findings.items():
+        print(f"claim {n:2d}: {f.verdict} — {f.why}")
+    print(f"article: {path}")
+    return code
+
+
 def cmd_report(args: argparse.Namespace) -> int:
     from reports.render.html import write_report
 
@@ -357,7 +390,7 @@ def cmd_gate(args: argparse.Namespace) -> int:
 
 
 COMMANDS = {"list": cmd_list, "run": cmd_run, "report": cmd_report, "gate": cmd_gate,
-            "sweep": cmd_sweep, "threshold": cmd_threshold}
+            "sweep": cmd_sweep, "threshold": cmd_threshold, "article": cmd_article}
 
 
 def main(argv: Sequence[str] | None = None) -> int:

@@ -30,6 +30,7 @@ from reports.registry import solvers
 from reports.registry.errors import RunFailed, UserError
 from reports.run.plan import CasePlan, Limits, plan_case
 from reports.run.units import UnitOutcome, run_unit, serial_executor
+from reports.store import layout
 
 
 def parse_value(text: str) -> Any:
@@ -130,17 +131,14 @@ def sweep_points(ref: str | Path, params: list[tuple[str, list[Any]]], *,
                    "values": [values for _, values in params]}
 
 
-def sweep_dir_name(case: str, params: list[tuple[str, list[Any]]]) -> str:
-    return f"{case}__sweep_" + "_".join(key.split(".")[-1] for key, _ in params)
-
-
 def plan_sweep(ref: str | Path, params: list[tuple[str, list[Any]]], solver_names: list[str],
                *, quick: bool = False, overrides: dict[str, Any] | None = None,
                skipped: dict[str, str] | None = None, limits: Limits | None = None,
                explicit: bool = True) -> CasePlan:
     cases, sweep = sweep_points(ref, params, quick=quick, overrides=overrides)
     return plan_case(ref, solver_names, quick=quick, overrides=overrides, skipped=skipped,
-                     points=cases, sweep=sweep, dir_name=sweep_dir_name(cases[0].name, params),
+                     points=cases, sweep=sweep,
+                     dir_name=layout.sweep_dir_name(cases[0].name, [k for k, _ in params]),
                      limits=limits, explicit=explicit)
 
 

@@ -48,6 +48,11 @@ SWEEP_CHECK = "sweep_check.json"
 #: beside the case directories: ``contact-vv threshold``'s table and the report
 THRESHOLDS = "thresholds.csv"
 REPORT = "index.html"
+#: ``contact-vv article``: its page, and the folder of its figures (PNG), their data (CSV)
+#: and the claims table (CSV)
+ARTICLE = "article.html"
+ARTICLE_DIR = "article"
+CLAIMS = "claims.csv"
 
 #: names a case directory may hold; a directory with none of them is not a result
 OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, JUMP_STUDY, EVENTS, FIELDS,
@@ -70,6 +75,12 @@ def param_dir(param: str) -> str:
 
 def case_dir(out: Path, case: str) -> Path:
     return Path(out) / safe_name(case)
+
+
+def sweep_dir_name(case: str, keys: list[str]) -> str:
+    """The case directory's name of ``contact-vv sweep CASE --param KEY=...`` (one or more
+    swept dotted keys): ``<case>__sweep_<last parts of the keys>``."""
+    return f"{case}__sweep_" + "_".join(key.split(".")[-1] for key in keys)
 
 
 def staging_dir(out: Path, case: str) -> Path:

@@ -1,0 +1,143 @@
+"""``contact-vv article``: the runs and thresholds the article's claims are judged from
+(:mod:`reports.studies.claims.sources`), run where ``DIR`` lacks them, after their cost
+estimate is printed. Each source runs with its grid study (``run --convergence``): the
+uncertainty of a claim's numbers comes from it."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pandas as pd
+
+from cases.loader import load_case
+from reports.registry import solvers
+from reports.run import threshold as th
+from reports.run.plan import CasePlan, Limits, plan_case
+from reports.run.study_runs import add_grid_studies
+from reports.run.sweep import plan_sweep
+from reports.run.threshold_table import existing
+from reports.studies.claims.sources import (
+    ARTICLE,
+    ARTICLE_NX,
+    NEEDS,
+    SOURCES,
+    THRESHOLDS,
+    ThresholdSpec,
+    find,
+)
+from reports.studies.events import EventOptions
+
+#: the solvers a threshold of the claims runs (the FEM's thresholds are on request:
+#: ``contact-vv threshold ... --solver fem``)
+THRESHOLD_SOLVERS = ("ic", "analytic")
+
+
+@dataclass
+class Work:
+    """What ``article`` will run: case plans and threshold requests, with their cost."""
+
+    plans: list[CasePlan] = field(default_factory=list)
+    requests: list[th.Request] = field(default_factory=list)
+    seconds: float = 0.0
+    unknown: list[str] = field(default_factory=list)
+
+    def describe(self) -> str:
+        if not (self.plans or self.requests):
+            return "article: every run it needs is in the results directory"
+        runs = sum(len(p.units()) for p in self.plans)
+        text = (f"article: {len(self.plans)} case(s) to run ({runs} solver runs, with their "
+                f"grid studies) and {len(self.requests)} threshold(s); estimated "
+                f"{self.seconds / 60:.1f} min")
+        if self.unknown:
+            text += f" (no estimate for {', '.join(sorted(set(self.unknown)))})"
+        return text
+
+
+def _cost(work: Work, solver: str, case, times: float) -> None:
+    cost = solvers.estimate(solver, case)
+    if cost is None:
+        work.unknown.append(solver)
+    else:
+        work.seconds += times * cost.seconds
+
+
+def _have(table: pd.DataFrame | None, case: str, spec: ThresholdSpec, at: str,
+          quick: bool) -> bool:
+    """Whether thresholds.csv already holds the ic rows of a threshold."""
+    if table is None or table.empty:
+        return False
+    t = table[(table["case"] == case) & (table["event"] == spec.event)
+              & (table["param"] == spec.param) & (table["solver"] == "ic")
+              & (table["quick"].astype(bool) == quick) & table["threshold"].notna()]
+    return bool(len(t[t["at"].astype(str) == at])) if at else bool(len(t))
+
+
+def threshold_requests(spec: ThresholdSpec, quick: bool, chosen: list[str],
+                       limits: Limits) -> list[tuple[th.Request, str]]:
+    """The requests of one threshold the claims read, with the ``at`` label each writes."""
+    case = load_case(spec.case, quick=quick)[0]
+    grids = tuple(dict.fromkeys(ARTICLE_NX / case.grid.nx if g == ARTICLE else float(g)
+                                for g in spec.grids))
+    names = tuple(s for s in THRESHOLD_SOLVERS if s in chosen)
+    outputs = [None]
+    if spec.every_output and case.fretting is not None:
+        outputs = [int(c) for c in case.fretting.output_cycles]
+    out = []
+    for n in outputs:
+        overrides = {} if n is None else {"fretting.cycles": n, "fretting.output_cycles": [n]}
+        out.append((th.Request(case=spec.case, param=spec.param, event=spec.event,
+                               lo=spec.lo, hi=spec.hi, resolution=spec.resolution,
+                               grids=grids, solvers=names, quick=quick, overrides=overrides,
+                               options=EventOptions("" if n is None else str(n)),
+                               limits=limits, explicit=False),
+                    "" if n is None else f"cycle={n}"))
+    return out
+
+
+def plan(out: Path, quick: bool, chosen: list[str], limits: Limits,
+         claims: tuple[int, ...], explicit: bool) -> Work:
+    """What the claims need that ``out`` lacks, and its estimated cost."""
+    work = Work()
+    for key in dict.fromkeys(k for n in claims for k in NEEDS[n]):
+        source = SOURCES[key]
+        if find(out, source, quick)[0] is not None:
+            continue
+        if source.key:
+            p = plan_sweep(source.case, [(source.key, list(source.values))], chosen,
+                           quick=quick, limits=limits, explicit=explicit)
+        else:
+            p = plan_case(source.case, chosen, quick=quick, limits=limits, explicit=explicit)
+        work.plans.append(p)
+        for i, s in p.units():
+            _cost(work, s, p.points[i], 1.0 + (0.65 if solvers.record(s).refine else 0.0))
+    if work.plans:
+        work.plans = add_grid_studies(work.plans, limits)
+    table = existing(out)
+    for spec in THRESHOLDS:
+        if spec.claim not in claims:
+            continue
+        name = load_case(spec.case, quick=quick)[0].name
+        for request, at in threshold_requests(spec, quick, chosen, limits):
+            if _have(table, name, spec, at, quick):
+                continue
+            work.requests.append(request)
+            case = load_case(spec.case, quick=quick, overrides=request.overrides)[0]
+            bisections = 2 + math.ceil(math.log2((spec.hi - spec.lo) / spec.resolution))
+            for s in request.solvers:
+                _cost(work, s, case, bisections * sum(max(g, 1.0) ** 2 for g in request.grids))
+    return work
+
+
+def execute(work: Work, out: Path, *, progress: bool | None,
+            report: Callable[[list], int], log: Callable[[str], None] | None) -> int:
+    """Run the plans and thresholds of ``work``; the worst exit status of the runs."""
+    from reports.run.runner import execute as run_plan
+    from reports.run.threshold_table import write_rows
+
+    codes = [report([run_plan(p, out, progress=progress)]) for p in work.plans]
+    for request in work.requests:
+        write_rows(out, th.run(request, log=log))
+    return max(codes, default=0)

@@ -1,0 +1,170 @@
+"""What a claim of the source article becomes once judged: a :class:`Finding` (the
+suite's measured numbers, their numerical uncertainty, a verdict and why) with the
+:class:`Panel` figures that show it, and the helpers the claims share to read numbers
+and uncertainties from stored results (:class:`Article`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from reports.registry import solvers
+from reports.store.results import CaseResults
+from reports.studies.gridstudy import SETTLED
+
+#: the four verdicts, in the order of the claims table's legend
+HOLDS = "holds"
+ARTICLE_GRID = "holds only on the article's grid"
+FAILS = "does not hold"
+UNDECIDED = "cannot be decided"
+VERDICTS = (HOLDS, ARTICLE_GRID, FAILS, UNDECIDED)
+
+
+@dataclass(frozen=True)
+class Panel:
+    """One plot of a figure, in the article's dimensionless axes: ``series`` maps a label
+    (solver and point) to its (x, y) arrays."""
+
+    title: str
+    xlabel: str
+    ylabel: str
+    series: dict[str, tuple[np.ndarray, np.ndarray]]
+    markers: bool = False
+
+    def frame(self) -> pd.DataFrame:
+        """The panel's data as rows (panel, series, x, y), for the figure's CSV."""
+        rows = [pd.DataFrame({"panel": self.title, "series": label, "x": np.asarray(x),
+                              "y": np.asarray(y)})
+                for label, (x, y) in self.series.items()]
+        return pd.concat(rows, ignore_index=True) if rows else \
+            pd.DataFrame(columns=["panel", "series", "x", "y"])
+
+
+@dataclass(frozen=True)
+class Finding:
+    """A judged claim: ``measured`` and ``uncertainty`` are sentences of numbers,
+    ``verdict`` one of :data:`VERDICTS`, ``why`` one sentence."""
+
+    measured: str
+    uncertainty: str
+    verdict: str
+    why: str
+    panels: tuple[Panel, ...] = ()
+    values: dict[str, float] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if self.verdict not in VERDICTS:
+            raise ValueError(f"verdict {self.verdict!r} is not one of {VERDICTS}")
+
+
+def undecided(why: str, panels: tuple[Panel, ...] = ()) -> Finding:
+    """A claim the results at hand cannot decide, and why (e.g. a run is missing)."""
+    return Finding("—", "—", UNDECIDED, why, panels)
+
+
+@dataclass
+class Article:
+    """The results a claims table is judged from: one case directory per source of
+    :mod:`reports.studies.claims.sources` (None where it is missing, with the reason) and
+    the rows of ``thresholds.csv``."""
+
+    cases: dict[str, CaseResults | None]
+    missing: dict[str, str]
+    thresholds: pd.DataFrame
+
+    def case(self, source: str) -> CaseResults:
+        found = self.cases.get(source)
+        if found is None:
+            raise MissingSource(f"no results for {source}: {self.missing.get(source, '')}")
+        return found
+
+    def series(self, source: str, solver: str) -> dict[float, pd.DataFrame]:
+        """Summary rows of one solver per sweep value (the number after ``=`` in
+        ``param``), each sorted by step."""
+        s = self.case(source).summary
+        s = s[s["solver"] == solver]
+        return {value_of(p): g.sort_values("step") for p, g in s.groupby("param")}
+
+    def scale(self, source: str, param: str) -> tuple[float, float]:
+        """(a0, p0) of the unworn Hertz contact of a sweep point."""
+        point = self.case(source).point(param)
+        return float(point["hertz_a0"]), float(point["hertz_p0"])
+
+    def solvers(self, source: str) -> list[str]:
+        return list(self.case(source).manifest.get("solvers", []))
+
+
+class MissingSource(LookupError):
+    """A claim needs results the directory does not hold."""
+
+
+def value_of(param: str) -> float:
+    """The swept value of a ``param`` label (``beta=45`` -> 45.0); NaN for none."""
+    _, eq, text = str(param).partition("=")
+    try:
+        return float(text) if eq else math.nan
+    except ValueError:
+        return math.nan
+
+
+def budget(solver: str, quantity: str, metric: str = "rel") -> float:
+    """The solver's error budget for a quantity (:mod:`reports.registry.solvers`): the
+    relative error the suite expects of it, used as its uncertainty where no second
+    solver or grid study measures one."""
+    return float(solvers.record(solver).budget(quantity, metric))
+
+
+def spread(values: dict[str, float]) -> float:
+    """Largest relative difference between the solvers' values of one quantity (0 for
+    fewer than two finite values)."""
+    v = np.array([x for x in values.values() if math.isfinite(x)])
+    if v.size < 2 or not np.any(v):
+        return 0.0
+    return float((v.max() - v.min()) / np.abs(v).max())
+
+
+def fmt(x: float, digits: int = 3) -> str:
+    return "—" if not math.isfinite(x) else f"{x:.{digits}g}"
+
+
+@dataclass(frozen=True)
+class Measured:
+    """A scalar of one solver with its numerical uncertainty ``u`` (same unit) and where
+    ``u`` comes from; ``settled`` is False when a grid study found it not converging."""
+
+    value: float
+    u: float
+    basis: str
+    settled: bool = True
+
+    def text(self, digits: int = 3, scale: float = 1.0) -> str:
+        return f"{fmt(self.value / scale, digits)} ± {fmt(self.u / scale, 2)}"
+
+
+def measure(art: Article, source: str, solver: str, param: str, step: int, quantity: str,
+            value: float) -> Measured:
+    """``value`` (the solver's ``quantity`` at ``step``) with its uncertainty: the GCI of
+    the grid study where ``run --convergence`` made one (module
+    :mod:`reports.studies.gridstudy`; a study that does not converge says so, with the
+    last refinement's change as a lower bound), else the solver's error budget."""
+    study = art.case(source).convergence
+    row = study[(study["solver"] == solver) & (study["param"] == param)
+                & (study["step"] == step) & (study["quantity"] == quantity)]
+    if not row.empty:
+        r = row.iloc[0]
+        if r["status"] in SETTLED:
+            u = abs(value) * float(r["gci_fine"]) if math.isfinite(r["gci_fine"]) else 0.0
+            return Measured(value, u, "grid study (GCI)")
+        change = abs(float(r["f1"]) - float(r["f2"]))
+        return Measured(value, change, f"grid study: {r['status']} (the last refinement "
+                        f"moved it by {fmt(change)})", settled=False)
+    s = art.case(source).summary
+    closed = s[(s["solver"] == "analytic") & (s["param"] == param) & (s["step"] == step)]
+    if solver != "analytic" and not closed.empty and math.isfinite(closed[quantity].iloc[0]):
+        return Measured(value, abs(value - float(closed[quantity].iloc[0])),
+                        "its difference from the closed form (no grid study)")
+    return Measured(value, abs(value) * budget(solver, quantity),
+                    f"{solver}'s error budget (no grid study, no closed form)")

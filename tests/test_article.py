@@ -1,0 +1,145 @@
+"""``contact-vv article``: the source article's claims judged at quick size (the claims
+table is a test: a change that moves a verdict fails here), the page and its files, the
+verdicts moved by seeded changes of the results, and bad input."""
+
+from __future__ import annotations
+
+import shutil
+import subprocess
+
+import pandas as pd
+import pytest
+
+from reports.cli import main
+from reports.render.article import judge_and_write
+from reports.store import layout
+from reports.studies.claims import CLAIMS, judge
+from reports.studies.claims.finding import ARTICLE_GRID, FAILS, HOLDS, UNDECIDED
+from reports.studies.claims.sources import collect
+
+#: the verdicts at quick size, ic and the closed forms (reasons in each finding's ``why``)
+QUICK = {1: HOLDS, 2: HOLDS, 3: HOLDS, 4: ARTICLE_GRID, 5: HOLDS, 6: HOLDS, 7: HOLDS,
+         8: UNDECIDED, 9: HOLDS, 10: HOLDS, 11: HOLDS, 12: UNDECIDED, 13: FAILS}
+ALL = tuple(QUICK)
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    """One quick article run through ic and the closed forms (about 2.5 minutes)."""
+    out = tmp_path_factory.mktemp("article") / "res"
+    code = main(["article", "--quick", "--solver", "ic,analytic", "--no-progress",
+                 "--out", str(out)])
+    return out, code
+
+
+def test_the_claims_table_at_quick_size(quick, capsys):
+    out, code = quick
+    assert code == 0
+    table = pd.read_csv(out / layout.ARTICLE_DIR / layout.CLAIMS)
+    assert dict(zip(table["claim"], table["verdict"], strict=True)) == QUICK
+    assert table["measured"].str.len().min() > 20 and table["why"].notna().all()
+
+
+def test_the_numbers_behind_the_verdicts(quick):
+    """The verdicts rest on numbers with an independent reference: Hertz's closed form,
+    Hamilton's exact threshold, the associated rule's traction angle, Archard's i_w(θ)."""
+    out, _ = quick
+    findings = judge(collect(out, True, ALL), ALL)
+    assert findings[1].values["vm_exact"] == pytest.approx(0.6200, abs=5e-4)
+    assert findings[4].values["exact"] == pytest.approx(0.30467, abs=1e-4)
+    assert findings[4].values["article_grid"] == pytest.approx(0.35, abs=0.01)
+    assert findings[6].values["ratio"] == pytest.approx(findings[6].values["ratio_exact"],
+                                                        rel=1e-9)
+    assert findings[9].values["angle"] == pytest.approx(findings[9].values["angle_exact"],
+                                                        abs=0.05)
+    assert "80." in findings[13].measured or "79." in findings[13].measured
+
+
+def test_the_page_figures_and_data(quick):
+    out, _ = quick
+    page = (out / layout.ARTICLE).read_text()
+    folder = out / layout.ARTICLE_DIR
+    for claim in CLAIMS:
+        assert f'id="claim-{claim.number}"' in page
+        assert (folder / f"claim_{claim.number:02d}.png").read_bytes()[:4] == b"\x89PNG"
+        data = pd.read_csv(folder / f"claim_{claim.number:02d}.csv")
+        assert list(data.columns) == ["panel", "series", "x", "y"] and len(data) > 2
+    assert page.count("<img") == len(CLAIMS)
+
+
+def test_a_second_run_runs_nothing(quick, capsys):
+    out, _ = quick
+    assert main(["article", "--quick", "--solver", "ic,analytic", "--no-progress",
+                 "--claims", "1-12", "--out", str(out)]) == 0
+    assert "every run it needs is in the results directory" in capsys.readouterr().out
+
+
+def _seeded(out, claim, change):
+    """The verdict of ``claim`` once ``change(article)`` has altered the results read."""
+    article = collect(out, True, (claim,))
+    change(article)
+    return judge(article, (claim,))[claim].verdict
+
+
+def test_seeded_changes_move_verdicts(quick):
+    out, _ = quick
+
+    def linear_wear(art):  # W(90) - W(0) made twice W(45) - W(0)
+        s = art.cases["pin_ortho"].summary
+        w = {b: s.loc[(s["param"] == f"beta={b}") & (s["solver"] == "ic"), "wear_volume"]
+             for b in (0, 45, 90)}
+        s.loc[w[90].index, "wear_volume"] = (w[0].to_numpy() + 2 * (w[45].to_numpy()
+                                             - w[0].to_numpy()))
+
+    def stress_falls(art):  # σ_VM,max of the sliding sphere reversed in μ
+        s = art.cases["sliding"].summary
+        for solver in ("ic", "analytic"):
+            rows = s["solver"] == solver
+            s.loc[rows, "vm_max"] = s.loc[rows, "vm_max"].to_numpy()[::-1]
+
+    def pressure_rises(art):  # the gross-slip pressure made to grow with the cycles
+        s = art.cases["fretting"].summary
+        rows = (s["solver"] == "ic") & (s["param"] == "beta=30")
+        s.loc[rows, "p_max"] = s.loc[rows, "p_max"].to_numpy()[::-1] * 2
+
+    def beta_67(art):  # the regime change moved to the article's angle
+        t = art.thresholds
+        t.loc[t["event"] == "gross_to_partial_slip", "threshold"] = 67.2
+
+    assert _seeded(out, 6, linear_wear) == FAILS
+    assert _seeded(out, 5, stress_falls) == FAILS
+    assert _seeded(out, 11, pressure_rises) == FAILS
+    assert _seeded(out, 13, beta_67) == HOLDS
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="headless Chromium is not installed")
+def test_renders_in_headless_chromium(quick, tmp_path):
+    out, _ = quick
+    url = (out / layout.ARTICLE).resolve().as_uri()
+    shot = tmp_path / "shot.png"
+    subprocess.run([CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu",
+                    f"--screenshot={shot}", "--window-size=1280,4000", url], check=True,
+                   capture_output=True, timeout=120)
+    assert shot.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and shot.stat().st_size > 50_000
+
+
+@pytest.mark.parametrize(("argv", "needle"), [
+    (["--claims", "14"], "--claims '14': the claims are numbered 1 to 13"),
+    (["--claims", "a"], "--claims 'a': 'a' is not N or N-M"),
+    (["--set", "grid.nx=21"], "--set: article runs the article's cases as the case files"),
+])
+def test_bad_input_is_named(tmp_path, capsys, argv, needle):
+    assert main(["article", "--quick", "--out", str(tmp_path / "res"), *argv]) == 2
+    assert needle in capsys.readouterr().err
+    assert not (tmp_path / "res").exists()
+
+
+def test_a_foreign_page_is_not_replaced(quick, tmp_path, capsys):
+    out, _ = quick
+    other = tmp_path / "res"
+    shutil.copytree(out, other)
+    (other / layout.ARTICLE).write_text("my own notes")
+    with pytest.raises(Exception, match="not a contact-vv article page"):
+        judge_and_write(other, True, ALL)
+    assert (other / layout.ARTICLE).read_text() == "my own notes"
