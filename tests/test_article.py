@@ -143,3 +143,36 @@ def test_a_foreign_page_is_not_replaced(quick, tmp_path, capsys):
     with pytest.raises(Exception, match="not a contact-vv article page"):
         judge_and_write(other, True, ALL)
     assert (other / layout.ARTICLE).read_text() == "my own notes"
+
+
+def test_a_fem_threshold_checks_the_half_space_solver(quick):
+    """Claim 13 reads a FEM threshold at the same output as the half-space solver's and
+    says whether the two agree within their uncertainties."""
+    out, _ = quick
+
+    def fem(shift):
+        def change(art):
+            t = art.thresholds
+            ic = t[(t["solver"] == "ic") & (t["event"] == "gross_to_partial_slip")
+                   & (t["at"] == "cycle=1")]
+            art.thresholds = pd.concat([t, ic.assign(solver="fem",
+                                                     threshold=ic["threshold"] + shift)])
+        return change
+
+    for shift, word in ((0.2, "agrees with ic"), (8.0, "differs from ic")):
+        article = collect(out, True, (13,))
+        fem(shift)(article)
+        assert word in judge(article, (13,))[13].measured
+
+
+def test_a_sweep_of_other_points_is_not_replaced(tmp_path, capsys):
+    out = tmp_path / "res"
+    assert main(["sweep", "pin_on_disk", "--quick", "--solver", "ic", "--workers", "0",
+                 "--param", "friction.mu=0.0,0.5", "--no-progress", "--out", str(out)]) == 0
+    before = (out / "pin_on_disk__sweep_mu" / "summary.csv").read_bytes()
+    capsys.readouterr()
+    assert main(["article", "--quick", "--solver", "ic,analytic", "--claims", "2",
+                 "--no-progress", "--out", str(out)]) == 2
+    assert "pin_on_disk__sweep_mu does not serve the article (pin_on_disk__sweep_mu has " \
+           "no mu = 0.15, 0.25, 0.35, 0.65)" in capsys.readouterr().err
+    assert (out / "pin_on_disk__sweep_mu" / "summary.csv").read_bytes() == before

@@ -14,11 +14,13 @@ import pandas as pd
 
 from cases.loader import load_case
 from reports.registry import solvers
+from reports.registry.errors import UserError
 from reports.run import threshold as th
 from reports.run.plan import CasePlan, Limits, plan_case
 from reports.run.study_runs import add_grid_studies
 from reports.run.sweep import plan_sweep
 from reports.run.threshold_table import existing
+from reports.store import layout
 from reports.studies.claims.sources import (
     ARTICLE,
     ARTICLE_NX,
@@ -26,6 +28,7 @@ from reports.studies.claims.sources import (
     SOURCES,
     THRESHOLDS,
     ThresholdSpec,
+    candidates,
     find,
 )
 from reports.studies.events import EventOptions
@@ -84,10 +87,12 @@ def threshold_requests(spec: ThresholdSpec, quick: bool, chosen: list[str],
     names = tuple(s for s in THRESHOLD_SOLVERS if s in chosen)
     outputs = [None]
     if spec.every_output and case.fretting is not None:
-        outputs = [int(c) for c in case.fretting.output_cycles]
+        outputs = [1, *(int(c) for c in case.fretting.output_cycles if c > 1)]
     out = []
     for n in outputs:
         overrides = {} if n is None else {"fretting.cycles": n, "fretting.output_cycles": [n]}
+        if n is not None and case.fretting.jump > n:
+            overrides["fretting.jump"] = 1.0  # the first cycle itself, no jump
         out.append((th.Request(case=spec.case, param=spec.param, event=spec.event,
                                lo=spec.lo, hi=spec.hi, resolution=spec.resolution,
                                grids=grids, solvers=names, quick=quick, overrides=overrides,
@@ -103,8 +108,13 @@ def plan(out: Path, quick: bool, chosen: list[str], limits: Limits,
     work = Work()
     for key in dict.fromkeys(k for n in claims for k in NEEDS[n]):
         source = SOURCES[key]
-        if find(out, source, quick)[0] is not None:
+        found, why = find(out, source, quick)
+        if found is not None:
             continue
+        mine = layout.case_dir(out, candidates(source)[-1])
+        if mine.exists():  # a run of other points or size: not replaced behind its back
+            raise UserError(f"{mine} does not serve the article ({why}); remove it or use "
+                            "another --out")
         if source.key:
             p = plan_sweep(source.case, [(source.key, list(source.values))], chosen,
                            quick=quick, limits=limits, explicit=explicit)

@@ -81,12 +81,24 @@ class Article:
             raise MissingSource(f"no results for {source}: {self.missing.get(source, '')}")
         return found
 
-    def series(self, source: str, solver: str) -> dict[float, pd.DataFrame]:
-        """Summary rows of one solver per sweep value (the number after ``=`` in
-        ``param``), each sorted by step."""
+    def rows(self, source: str, solver: str) -> pd.DataFrame:
+        """Summary rows of one solver, with the swept value as column ``value`` (the number
+        after ``=`` in ``param``), sorted by value and step."""
         s = self.case(source).summary
-        s = s[s["solver"] == solver]
-        return {value_of(p): g.sort_values("step") for p, g in s.groupby("param")}
+        s = s[s["solver"] == solver].copy()
+        s["value"] = [value_of(p) for p in s["param"]]
+        return s.sort_values(["value", "step"])
+
+    def base_solvers(self, source: str) -> list[str]:
+        """The solvers of a source, metamorphic relations left out."""
+        return [s for s in self.solvers(source) if not solvers.record(s).base]
+
+    def half_cell(self, source: str, param: str) -> tuple[float, float]:
+        """Half a cell of the stress grid (depth step, surface step) [mm]: how far a
+        sampled maximum can lie from the true one."""
+        point = self.case(source).point(param)
+        st, g = point["stress"], point["grid"]
+        return 0.5 * st["depth"] / (st["nz"] - 1), 0.5 * g["Lx"] / g["nx"]
 
     def scale(self, source: str, param: str) -> tuple[float, float]:
         """(a0, p0) of the unworn Hertz contact of a sweep point."""
@@ -117,13 +129,9 @@ def budget(solver: str, quantity: str, metric: str = "rel") -> float:
     return float(solvers.record(solver).budget(quantity, metric))
 
 
-def spread(values: dict[str, float]) -> float:
-    """Largest relative difference between the solvers' values of one quantity (0 for
-    fewer than two finite values)."""
-    v = np.array([x for x in values.values() if math.isfinite(x)])
-    if v.size < 2 or not np.any(v):
-        return 0.0
-    return float((v.max() - v.min()) / np.abs(v).max())
+def closed_form(name: str):
+    """A closed form of the ``analytic`` solver's package (through the registry)."""
+    return solvers.record("analytic").entry(name)
 
 
 def fmt(x: float, digits: int = 3) -> str:

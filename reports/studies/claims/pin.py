@@ -17,11 +17,11 @@ from reports.studies.claims.finding import (
     Article,
     Finding,
     Panel,
+    closed_form,
     fmt,
     measure,
     undecided,
 )
-from reports.studies.claims.static import base_solvers, closed_form, half_cell, rows
 
 #: what "differ markedly" is taken to mean in claim 7: a spread over β above 10 %
 MARKED = 0.10
@@ -46,7 +46,7 @@ def worn_pin(art: Article) -> Finding:
     rows of those quantities (tolerance: the two error budgets, Argatov's asymptotic
     term included) and the ic wear depth against Hegadekatte's."""
     src = "pin"
-    r = rows(art, src, "ic")
+    r = art.rows(src, "ic")
     r = r[r["value"] == 0.0]
     if r.empty:
         return undecided("no frictionless worn pin (μ = 0) in the pin results")
@@ -94,14 +94,14 @@ def frictionless_depth(art: Article) -> Finding:
     """Claim 3: the frictionless worn pin's σ_VM,max falls with s and moves deeper than
     z/a0 = 0.48, staying on the axis."""
     src, out, series, bad = "pin", [], {"vm": {}, "z": {}}, []
-    for solver in base_solvers(art, src):
-        r = rows(art, src, solver)
+    for solver in art.base_solvers(src):
+        r = art.rows(src, solver)
         r = r[(r["value"] == 0.0) & r["vm_max"].notna()]
         if len(r) < 2:
             continue
         param = r["param"].iloc[0]
         a0, p0 = art.scale(src, param)
-        dz, dx = half_cell(art, src, param)
+        dz, dx = art.half_cell(src, param)
         s, vm, z = r["s"].to_numpy(), r["vm_max"].to_numpy(), r["vm_max_z"].to_numpy()
         off = np.hypot(r["vm_max_x"].to_numpy(), r["vm_max_y"].to_numpy())
         u = np.array([measure(art, src, solver, param, int(k), "vm_max", v).u
@@ -129,7 +129,7 @@ def frictionless_depth(art: Article) -> Finding:
 
 
 def _ortho_last(art: Article, solver: str = "ic") -> pd.DataFrame:
-    r = rows(art, "pin_ortho", solver)
+    r = art.rows("pin_ortho", solver)
     return r[r["step"] == r["step"].max()]
 
 
@@ -193,12 +193,12 @@ def pressure_and_area(art: Article) -> Finding:
 def stress_with_beta(art: Article) -> Finding:
     """Claim 8: at fixed s the orthotropic pin's σ_VM,max grows with β and moves towards
     the surface."""
-    r = rows(art, "pin_ortho", "ic")
+    r = art.rows("pin_ortho", "ic")
     r = r[r["s"] > 0]
     if r.empty or r["value"].nunique() < 3:
         return undecided("needs the worn orthotropic pin at three β")
     a0, p0 = art.scale("pin_ortho", r["param"].iloc[0])
-    dz, _ = half_cell(art, "pin_ortho", r["param"].iloc[0])
+    dz, _ = art.half_cell("pin_ortho", r["param"].iloc[0])
     falls, within, out, series = [], [], [], {}
     for s, g in r.groupby("s"):
         g = g.sort_values("value")

@@ -56,7 +56,7 @@ FRETTING_LOAD = str(CASES_DIR / "examples" / "fretting_orthotropic_load.toml")
 class ThresholdSpec:
     """One ``contact-vv threshold`` a claim reads: ``grids`` are refinement factors
     (:data:`ARTICLE` stands for the article's grid); with ``every_output`` one bisection
-    per output cycle of the case, each run cut at that cycle."""
+    after the first cycle and per output cycle of the case, each run cut at that cycle."""
 
     claim: int
     case: str
@@ -66,7 +66,7 @@ class ThresholdSpec:
     hi: float
     resolution: float
     grids: tuple[float | str, ...]
-    every_output: bool = False
+    every_output: bool = False  # and after the first cycle
 
 
 ARTICLE = "article"

@@ -8,9 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pandas as pd
 
-from reports.registry import solvers
 from reports.studies.claims.finding import (
     ARTICLE_GRID,
     FAILS,
@@ -19,6 +17,7 @@ from reports.studies.claims.finding import (
     Article,
     Finding,
     Panel,
+    closed_form,
     fmt,
     measure,
     undecided,
@@ -30,34 +29,6 @@ HERTZ_VM, HERTZ_Z = 0.620, 0.48
 SURFACE_MU = 0.35
 
 
-def closed_form(name: str):
-    """A closed form of the ``analytic`` solver's package (through the registry)."""
-    return solvers.record("analytic").entry(name)
-
-
-def rows(art: Article, source: str, solver: str) -> pd.DataFrame:
-    """Summary rows of one solver, with the swept value as column ``value``, sorted."""
-    from reports.studies.claims.finding import value_of
-
-    s = art.case(source).summary
-    s = s[s["solver"] == solver].copy()
-    s["value"] = [value_of(p) for p in s["param"]]
-    return s.sort_values(["value", "step"])
-
-
-def base_solvers(art: Article, source: str) -> list[str]:
-    """The solvers of a source, metamorphic relations left out."""
-    return [s for s in art.solvers(source) if "+" not in s]
-
-
-def half_cell(art: Article, source: str, param: str) -> tuple[float, float]:
-    """Half a cell of the stress grid (depth step, surface step) [mm]: where a sampled
-    maximum can lie from the true one."""
-    point = art.case(source).point(param)
-    st, g = point["stress"], point["grid"]
-    return 0.5 * st["depth"] / (st["nz"] - 1), 0.5 * g["Lx"] / g["nx"]
-
-
 def hertz_peak(art: Article) -> Finding:
     """Claim 1: σ_VM,max / p0 = 0.620 at z / a0 = 0.48 under a frictionless sphere."""
     src = "hertz"
@@ -65,12 +36,12 @@ def hertz_peak(art: Article) -> Finding:
     a0, p0 = art.scale(src, "")
     nu = float(case.point("")["a"]["nu"])
     vm_exact, z_exact = closed_form("axis_vm_max")(nu)
-    dz, _ = half_cell(art, src, "")
+    dz, _ = art.half_cell(src, "")
     z = np.linspace(0.0, 2.0, 201)
     series = {"closed form": (z, closed_form("axis_von_mises")(z * a0, a0, p0, nu) / p0)}
     parts = []
-    for solver in base_solvers(art, src):
-        r = rows(art, src, solver).iloc[-1]
+    for solver in art.base_solvers(src):
+        r = art.rows(src, solver).iloc[-1]
         m = measure(art, src, solver, "", int(r["step"]), "vm_max", float(r["vm_max"]))
         parts.append(f"{solver} {m.text(4, p0)} at z/a0 = {fmt(r['vm_max_z'] / a0)} ± "
                      f"{fmt(dz / a0, 2)}")
@@ -145,7 +116,7 @@ def _running_in(art: Article) -> dict:
     """For each μ of the worn pin: where its σ_VM maximum is while it wears."""
     if art.cases.get("pin") is None:
         return {"text": "no pin results", "ok": False, "panel": None}
-    r = rows(art, "pin", "ic")
+    r = art.rows("pin", "ic")
     reached, texts, series = [], [], {}
     for mu, g in r.groupby("value"):
         if mu == 0:
@@ -172,10 +143,10 @@ def friction_trend(art: Article) -> Finding:
     src = "sliding"
     series: dict[str, dict] = {"vm": {}, "x": {}, "z": {}}
     bad, parts = [], []
-    for solver in base_solvers(art, src):
-        r = rows(art, src, solver).groupby("value").last().reset_index()
+    for solver in art.base_solvers(src):
+        r = art.rows(src, solver).groupby("value").last().reset_index()
         a0, p0 = art.scale(src, r["param"].iloc[0])
-        dz, dx = half_cell(art, src, r["param"].iloc[0])
+        dz, dx = art.half_cell(src, r["param"].iloc[0])
         mu, vm = r["value"].to_numpy(), r["vm_max"].to_numpy()
         x, z = np.abs(r["vm_max_x"].to_numpy()), r["vm_max_z"].to_numpy()
         u = np.array([measure(art, src, solver, p, int(k), "vm_max", v).u
