@@ -87,12 +87,13 @@ def threshold_requests(spec: ThresholdSpec, quick: bool, chosen: list[str],
     names = tuple(s for s in THRESHOLD_SOLVERS if s in chosen)
     outputs = [None]
     if spec.every_output and case.fretting is not None:
-        outputs = [1, *(int(c) for c in case.fretting.output_cycles if c > 1)]
+        outputs = sorted({*spec.cycles, *(int(c) for c in case.fretting.output_cycles)})
     out = []
     for n in outputs:
         overrides = {} if n is None else {"fretting.cycles": n, "fretting.output_cycles": [n]}
-        if n is not None and case.fretting.jump > n:
-            overrides["fretting.jump"] = 1.0  # the first cycle itself, no jump
+        if n is not None and case.fretting.jump > n / 4:
+            # fewer cycles than four jumps: a jump of a quarter of them (one: none)
+            overrides["fretting.jump"] = float(max(1, n // 4))
         out.append((th.Request(case=spec.case, param=spec.param, event=spec.event,
                                lo=spec.lo, hi=spec.hi, resolution=spec.resolution,
                                grids=grids, solvers=names, quick=quick, overrides=overrides,
