@@ -23,6 +23,8 @@ from reports.studies.claims.sources import collect
 
 TITLE = "contact-vv: does the article hold?"
 COLOURS = {"holds": "pass", "does not hold": "fail"}
+#: a series of at most this many points is drawn with its points marked
+FEW = 12
 
 
 def figure(panels: tuple[Panel, ...], title: str) -> bytes | None:
@@ -31,8 +33,8 @@ def figure(panels: tuple[Panel, ...], title: str) -> bytes | None:
         return None
     fig, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels), 3.6), squeeze=False)
     for ax, panel in zip(axes[0], panels, strict=True):
-        for label, (x, y) in panel.series.items():
-            ax.plot(x, y, "o-" if panel.markers else "-", ms=4, label=label)
+        for label, (x, y) in panel.series.items():  # a few outputs: their points shown
+            ax.plot(x, y, "o-" if panel.markers or len(x) <= FEW else "-", ms=4, label=label)
         ax.set(title=panel.title, xlabel=panel.xlabel, ylabel=panel.ylabel)
         ax.grid(alpha=0.3)
         if panel.series:
