@@ -21,6 +21,8 @@ from reports.studies.claims.sources import collect
 QUICK = {1: HOLDS, 2: HOLDS, 3: HOLDS, 4: ARTICLE_GRID, 5: HOLDS, 6: HOLDS, 7: HOLDS,
          8: UNDECIDED, 9: HOLDS, 10: HOLDS, 11: HOLDS, 12: UNDECIDED, 13: FAILS}
 ALL = tuple(QUICK)
+#: the verdicts at article size, ic and the closed forms (README, "Does the article hold?")
+ARTICLE = dict(QUICK)
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
 
@@ -176,3 +178,14 @@ def test_a_sweep_of_other_points_is_not_replaced(tmp_path, capsys):
     assert "pin_on_disk__sweep_mu does not serve the article (pin_on_disk__sweep_mu has " \
            "no mu = 0.15, 0.25, 0.35, 0.65)" in capsys.readouterr().err
     assert (out / "pin_on_disk__sweep_mu" / "summary.csv").read_bytes() == before
+
+
+@pytest.mark.full
+def test_the_claims_table_at_article_size(tmp_path):
+    """The article-size runs behind the claims (about 80 minutes on one core,
+    benchmarks/README.md) and their verdicts."""
+    out = tmp_path / "res"
+    assert main(["article", "--solver", "ic,analytic", "--no-progress", "--out",
+                 str(out)]) == 0
+    table = pd.read_csv(out / layout.ARTICLE_DIR / layout.CLAIMS)
+    assert dict(zip(table["claim"], table["verdict"], strict=True)) == ARTICLE
