@@ -189,3 +189,10 @@ def test_the_claims_table_at_article_size(tmp_path):
                  str(out)]) == 0
     table = pd.read_csv(out / layout.ARTICLE_DIR / layout.CLAIMS)
     assert dict(zip(table["claim"], table["verdict"], strict=True)) == ARTICLE
+
+
+def test_thresholds_of_the_other_tier_are_not_read(quick):
+    """thresholds.csv stores its tier as text: quick rows are not article-size ones."""
+    out, _ = quick
+    assert len(collect(out, True, ALL).thresholds) > 0
+    assert collect(out, False, ALL).thresholds.empty

@@ -30,6 +30,7 @@ from reports.studies.claims.sources import (
     ThresholdSpec,
     candidates,
     find,
+    of_tier,
 )
 from reports.studies.events import EventOptions
 
@@ -74,7 +75,7 @@ def _have(table: pd.DataFrame | None, case: str, spec: ThresholdSpec, at: str,
         return False
     t = table[(table["case"] == case) & (table["event"] == spec.event)
               & (table["param"] == spec.param) & (table["solver"] == "ic")
-              & (table["quick"].astype(bool) == quick) & table["threshold"].notna()]
+              & of_tier(table, quick) & table["threshold"].notna()]
     return bool(len(t[t["at"].astype(str) == at])) if at else bool(len(t))
 
 

@@ -141,6 +141,12 @@ def collect(out: Path, quick: bool, claims: tuple[int, ...] = tuple(NEEDS)) -> A
     path = Path(out) / layout.THRESHOLDS
     thresholds = read_result(path, read_thresholds) if path.exists() else \
         pd.DataFrame(columns=["case", "event", "param", "solver", "grid", "threshold"])
-    if "quick" in thresholds.columns:
-        thresholds = thresholds[thresholds["quick"].astype(bool) == quick]
-    return Article(cases, missing, thresholds)
+    return Article(cases, missing, thresholds[of_tier(thresholds, quick)])
+
+
+def of_tier(thresholds: pd.DataFrame, quick: bool) -> pd.Series:
+    """The rows of ``thresholds.csv`` of one tier (its ``quick`` column reads as text)."""
+    if "quick" not in thresholds.columns:
+        return pd.Series(True, index=thresholds.index)
+    text = thresholds["quick"].astype(str).str.strip().str.lower()
+    return text.isin(("true", "1", "1.0")) == quick
