@@ -62,6 +62,15 @@ def axis_von_mises(z, a: float, p0: float, nu: float):
     return _axis_von_mises(z, a, p0, nu)
 
 
+def sliding_vm_max(mu: float, nu: float) -> tuple[float, float, float]:
+    """(σ_VM,max / p0, x / a, z / a) of the sliding sphere over its xz plane, exact
+    (:func:`analytic.sliding.vm_max_xz`; the surface maximum at the trailing edge's cusp)."""
+    from .sliding import vm_max_xz
+
+    found = vm_max_xz(mu, nu)
+    return float(found.value), float(found.x), float(found.z)
+
+
 def worn_pin(s, a0: float, i1: float, i2: float, theta_deg: float, P: float, R: float
              ) -> dict[str, object]:
     """The worn pin's closed forms at sliding distances s (:mod:`analytic.wear`): Archard's
@@ -77,4 +86,5 @@ def worn_pin(s, a0: float, i1: float, i2: float, theta_deg: float, P: float, R: 
             "w_cap": wear.hegadekatte_wear_depth(s, i_w, P, R)}
 
 
-__all__ = ["axis_vm_max", "axis_von_mises", "solve", "supports", "surface_jump", "worn_pin"]
+__all__ = ["axis_vm_max", "axis_von_mises", "sliding_vm_max", "solve", "supports",
+           "surface_jump", "worn_pin"]

@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pandas as pd
@@ -16,6 +17,7 @@ from reports.studies.claims.finding import (
     UNDECIDED,
     Article,
     Finding,
+    MissingSource,
     Panel,
     fmt,
     measure,
@@ -23,6 +25,8 @@ from reports.studies.claims.finding import (
 )
 
 SRC = "fretting"
+#: the two normal controls the article leaves open, as sources
+CONTROLS = {"approach held": "fretting", "load held": "fretting_load"}
 #: the article's regime-change angle (claim 13) and its printed resolution
 ARTICLE_BETA = 67.0
 #: the crown of claim 10: the wear at the centre of the stick zone below this share of
@@ -31,35 +35,36 @@ CROWN = 0.25
 STICK, SLIP = 1, 2
 
 
-def _point(art: Article, beta: float, solver: str = "ic") -> tuple[str, pd.DataFrame] | None:
-    r = art.rows(SRC, solver)
+def _point(art: Article, beta: float, src: str = SRC, solver: str = "ic"
+           ) -> tuple[str, pd.DataFrame] | None:
+    r = art.rows(src, solver)
     r = r[r["value"] == beta]
     return (r["param"].iloc[0], r) if not r.empty else None
 
 
-def _cycles(art: Article, solver: str, param: str) -> pd.DataFrame:
-    return art.case(SRC).tables(solver, param).get("cycles", pd.DataFrame())
+def _cycles(art: Article, src: str, solver: str, param: str) -> pd.DataFrame:
+    return art.case(src).tables(solver, param).get("cycles", pd.DataFrame())
 
 
-def _last_step(art: Article, solver: str, param: str):
-    steps = art.case(SRC).steps(solver, param)
+def _last_step(art: Article, src: str, solver: str, param: str):
+    steps = art.case(src).steps(solver, param)
     return steps[max(steps)] if steps else None
 
 
-def regimes(art: Article) -> Finding:
+def regimes(art: Article, src: str = SRC) -> Finding:
     """Claim 10: at β = 0 gross slip and the wear widens the contact; at β = 90 partial
     slip, with a crown of wear around an unworn stick zone."""
-    g, p = _point(art, 0.0), _point(art, 90.0)
+    g, p = _point(art, 0.0, src), _point(art, 90.0, src)
     if g is None or p is None:
         return undecided("needs the fretting sweep at β = 0 and 90°")
     out, bad, panels = [], [], []
     (pg, rg), (pp, _) = g, p
-    a0, _ = art.scale(SRC, pg)
-    cg, cp = _cycles(art, "ic", pg), _cycles(art, "ic", pp)
+    a0, _ = art.scale(src, pg)
+    cg, cp = _cycles(art, src, "ic", pg), _cycles(art, src, "ic", pp)
     gross = bool(len(cg)) and bool((cg["min_stick_area"] == 0).all())
     area0 = math.pi * a0**2
     area = rg["contact_area"].to_numpy()
-    u = measure(art, SRC, "ic", pg, int(rg["step"].iloc[-1]), "contact_area", area[-1]).u
+    u = measure(art, src, "ic", pg, int(rg["step"].iloc[-1]), "contact_area", area[-1]).u
     widens = area[-1] - u > area0 and bool(np.all(np.diff(area) > -u))
     out.append(f"β = 0: least stick area over every cycle {fmt(cg['min_stick_area'].max())} "
                f"mm²; contact area {fmt(area0)} (unworn) → {', '.join(fmt(a) for a in area)} "
@@ -68,7 +73,7 @@ def regimes(art: Article) -> Finding:
     bad += [] if widens else ["the wear does not widen the β = 0 contact"]
     partial = bool(len(cp)) and bool((cp["min_stick_area"] > 0).all())
     bad += [] if partial else ["β = 90 is not in partial slip"]
-    st = _last_step(art, "ic", pp)
+    st = _last_step(art, src, "ic", pp)
     w = 1e3 * (st.surface["wear_a"] + st.surface["wear_b"])
     stick = st.surface["state"] == STICK
     i0, j0 = int(np.argmin(np.abs(st.x))), int(np.argmin(np.abs(st.y)))
@@ -80,7 +85,7 @@ def regimes(art: Article) -> Finding:
                f"cycle; at the last output the centre's wear {fmt(centre, 2)} of the largest, "
                f"the stick zone's largest {fmt(inside, 2)}")
     for beta, param in ((0.0, pg), (90.0, pp)):
-        s = _last_step(art, "ic", param)
+        s = _last_step(art, src, "ic", param)
         wt = 1e3 * (s.surface["wear_a"] + s.surface["wear_b"])
         panels.append(Panel(f"wear depth along x, β = {beta:g}° (last output)", "x / a0",
                             "w_a + w_b [µm]", {"ic": (s.x / a0, wt[:, j0])}))
@@ -91,19 +96,19 @@ def regimes(art: Article) -> Finding:
                    tuple(panels), {"centre_wear": centre})
 
 
-def gross_slip_pressure(art: Article) -> Finding:
+def gross_slip_pressure(art: Article, src: str = SRC) -> Finding:
     """Claim 11: in gross slip (β = 30°) the pressure falls while the contact grows."""
-    found = _point(art, 30.0)
+    found = _point(art, 30.0, src)
     if found is None:
         return undecided("needs the fretting sweep at β = 30°")
     param, r = found
-    a0, p0 = art.scale(SRC, param)
+    a0, p0 = art.scale(src, param)
     cyc = np.concatenate([[0.0], r["cycle"].to_numpy()])
     p = np.concatenate([[p0], r["p_max"].to_numpy()])
     a = np.concatenate([[math.pi * a0**2], r["contact_area"].to_numpy()])
-    up = [0.0] + [measure(art, SRC, "ic", param, int(k), "p_max", v).u
+    up = [0.0] + [measure(art, src, "ic", param, int(k), "p_max", v).u
                   for k, v in zip(r["step"], r["p_max"], strict=True)]
-    ua = [0.0] + [measure(art, SRC, "ic", param, int(k), "contact_area", v).u
+    ua = [0.0] + [measure(art, src, "ic", param, int(k), "contact_area", v).u
                   for k, v in zip(r["step"], r["contact_area"], strict=True)]
     up, ua = np.array(up), np.array(ua)
     falls = bool(np.all(np.diff(p) < up[1:] + up[:-1]))
@@ -121,7 +126,7 @@ def gross_slip_pressure(art: Article) -> Finding:
                    (panel,))
 
 
-def partial_slip_pressure(art: Article) -> Finding:
+def partial_slip_pressure(art: Article, src: str = SRC) -> Finding:
     """Claim 12: in partial slip (β = 90°) the pressure turns towards a nearly uniform
     distribution over the stick zone, with a maximum more than twice the first cycles'
     (the unworn contact's p0 at the held approach).
@@ -131,13 +136,13 @@ def partial_slip_pressure(art: Article) -> Finding:
     of p_n there against Hertz's over the same cells, and the share of the load the stick
     zone carries, output by output. A maximum on the stick edge is the step's peak: it is
     a number only where a grid study shows how it moves."""
-    found = _point(art, 90.0)
+    found = _point(art, 90.0, src)
     if found is None:
         return undecided("needs the fretting sweep at β = 90°")
     param, r = found
-    a0, p0 = art.scale(SRC, param)
+    a0, p0 = art.scale(src, param)
     cycles, cv, cv_h, share = [], [], [], []
-    steps = art.case(SRC).steps("ic", param)
+    steps = art.case(src).steps("ic", param)
     for k in sorted(steps):
         st = steps[k]
         stick = st.surface["state"] == STICK
@@ -154,14 +159,14 @@ def partial_slip_pressure(art: Article) -> Finding:
     if not cycles:
         return undecided("no stick zone wider than its edge cells at β = 90°")
     last = r.iloc[-1]
-    m = measure(art, SRC, "ic", param, int(last["step"]), "p_max", float(last["p_max"]))
+    m = measure(art, src, "ic", param, int(last["step"]), "p_max", float(last["p_max"]))
     st = steps[max(steps)]
     p, stick = st.surface["p_n"], st.surface["state"] == STICK
     edge = stick & ~ndimage.binary_erosion(stick) | ndimage.binary_dilation(stick) & ~stick
     on_edge = bool(edge.flat[int(np.argmax(p))])
     ratio, u = m.value / p0, m.u / p0
     flatter = cv[-1] < cv_h[-1] and share[-1] >= share[0]
-    lower_bound = on_edge and _grows(art, param, int(last["step"]))
+    lower_bound = on_edge and _grows(art, src, param, int(last["step"]))
     if not flatter:
         verdict, why = FAILS, "the pressure inside the stick zone is not flatter than Hertz's"
     elif ratio + u < 2.0 and not on_edge:
@@ -196,15 +201,43 @@ def partial_slip_pressure(art: Article) -> Finding:
                    {"ratio": ratio, "cv": cv[-1], "cv_hertz": cv_h[-1]})
 
 
-def _grows(art: Article, param: str, step: int) -> bool:
+def _grows(art: Article, src: str, param: str, step: int) -> bool:
     """Whether the grid study of p_max shows it growing with every refinement."""
-    study = art.case(SRC).convergence
+    study = art.case(src).convergence
     row = study[(study["solver"] == "ic") & (study["param"] == param)
                 & (study["step"] == step) & (study["quantity"] == "p_max")]
     if row.empty:
         return False
     r = row.iloc[0]
     return bool(r["f1"] > r["f2"] > r["f3"])
+
+
+def under_both_controls(judge: Callable[[Article, str], Finding]
+                        ) -> Callable[[Article], Finding]:
+    """A claim judged under the held approach and under the held load (the article leaves
+    the normal control open): it holds if it holds under one, and says under which; it
+    does not hold if it holds under neither."""
+    def both(art: Article) -> Finding:
+        found = {}
+        for control, src in CONTROLS.items():
+            try:
+                found[control] = judge(art, src)
+            except MissingSource as exc:
+                found[control] = undecided(str(exc))
+        verdicts = [f.verdict for f in found.values()]
+        holds = [c for c, f in found.items() if f.verdict == HOLDS]
+        verdict = HOLDS if holds else FAILS if all(v == FAILS for v in verdicts) else UNDECIDED
+        why = "; ".join(f"{c}: {f.verdict} ({f.why})" for c, f in found.items())
+        if holds:
+            why = f"reproduced with the {' and the '.join(holds)}; " + why
+        panels = tuple(Panel(f"{c}: {p.title}", p.xlabel, p.ylabel, p.series, p.markers)
+                       for c, f in found.items() for p in f.panels)
+        return Finding("; ".join(f"{c}: {f.measured}" for c, f in found.items()),
+                       "; ".join(f"{c}: {f.uncertainty}" for c, f in found.items()), verdict,
+                       why, panels, {f"{c}: {k}": v for c, f in found.items()
+                                     for k, v in f.values.items()})
+    both.__doc__ = judge.__doc__
+    return both
 
 
 def _cycle_of(at: str) -> float:

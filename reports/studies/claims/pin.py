@@ -60,7 +60,6 @@ def worn_pin(art: Article) -> Finding:
     m = m[(m["pair"] == "ic-analytic") & (m["param"] == param) & m["quantity"].isin(WORN)
           & gated(m)]
     worn = m[m["step"] > 0]
-    cap = np.abs(r["w_max"].to_numpy()[1:] - at["w_cap"][1:]) / at["w_cap"][1:]
     panels = (
         Panel("maximum wear depth", "s / a0", "w_max [µm]",
               {"ic": (s / a0, 1e3 * r["w_max"].to_numpy()),
@@ -76,6 +75,8 @@ def worn_pin(art: Article) -> Finding:
         return undecided("no gated ic-analytic row of the worn pin (run the analytic "
                          "solver with ic)", panels)
     failed = worn[~worn["passed"].astype(bool)]
+    compared = np.isin(s, worn["s"].to_numpy()) & (at["w_cap"] > 0)  # where Argatov applies
+    cap = np.abs(r["w_max"].to_numpy()[compared] - at["w_cap"][compared]) / at["w_cap"][compared]
     worst = worn.assign(margin=worn["value"] / worn["tolerance"]).sort_values("margin").iloc[-1]
     measured = (f"{len(worn)} gated ic-analytic rows of the worn pin, worst "
                 f"{worst['quantity']} {worst['metric']} {fmt(worst['value'])} against "

@@ -37,19 +37,25 @@ class Source:
     def label(self) -> str:
         return self.key.split(".")[-1]
 
+    @property
+    def name(self) -> str:
+        """The case's name: a bundled case's, or a case file's stem."""
+        return Path(self.case).stem
+
 
 MU = (0.0, 0.15, 0.25, 0.35, 0.5, 0.65)
+BETA = (0.0, 30.0, 60.0, 70.0, 80.0, 90.0)
+#: the fretting case under the other normal control the article leaves open (load held)
+FRETTING_LOAD = str(CASES_DIR / "examples" / "fretting_orthotropic_load.toml")
 SOURCES: dict[str, Source] = {
     "hertz": Source("hertz"),
     "sliding": Source("sliding_friction", "friction.mu", MU),
     "pin": Source("pin_on_disk", "friction.mu", MU),
     "pin_ortho": Source("pin_on_disk_orthotropic", "friction.beta", (0.0, 45.0, 90.0)),
-    "fretting": Source("fretting_orthotropic", "friction.beta",
-                       (0.0, 30.0, 60.0, 70.0, 80.0, 90.0)),
+    "fretting": Source("fretting_orthotropic", "friction.beta", BETA),
+    "fretting_load": Source(FRETTING_LOAD, "friction.beta", BETA),
 }
 
-#: the fretting case under the other normal control (load held, claim 13)
-FRETTING_LOAD = str(CASES_DIR / "examples" / "fretting_orthotropic_load.toml")
 
 
 @dataclass(frozen=True)
@@ -84,15 +90,15 @@ THRESHOLDS = (
 #: the sources each claim reads (claims 4 and 13 also read thresholds)
 NEEDS = {1: ("hertz",), 2: ("pin",), 3: ("pin",), 4: ("pin",), 5: ("sliding",),
          **{n: ("pin_ortho",) for n in (6, 7, 8, 9)},
-         **{n: ("fretting",) for n in (10, 11, 12, 13)}}
+         **{n: ("fretting", "fretting_load") for n in (10, 11, 12)}, 13: ("fretting",)}
 
 
 def candidates(source: Source) -> list[str]:
     """Case directories that can serve a source, in order: the bundled run's, then the
     article's own sweep."""
-    names = [source.case]
+    names = [source.name]
     if source.key:
-        names.append(layout.sweep_dir_name(source.case, [source.key]))
+        names.append(layout.sweep_dir_name(source.name, [source.key]))
     return names
 
 
