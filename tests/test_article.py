@@ -95,8 +95,14 @@ def test_seeded_changes_move_verdicts(quick, monkeypatch):
                                              - w[0].to_numpy()))
 
 
-    def pressure_rises(art):  # the gross-slip pressure made to grow with the cycles
-        s = art.cases["fretting"].summary
+    def pressure_rises(art):  # the gross-slip pressure made to grow, under both controls
+        for source in ("fretting", "fretting_load"):
+            s = art.cases[source].summary
+            rows = (s["solver"] == "ic") & (s["param"] == "beta=30")
+            s.loc[rows, "p_max"] = s.loc[rows, "p_max"].to_numpy()[::-1] * 2
+
+    def load_pressure_rises(art):  # under the held load only: the held approach holds
+        s = art.cases["fretting_load"].summary
         rows = (s["solver"] == "ic") & (s["param"] == "beta=30")
         s.loc[rows, "p_max"] = s.loc[rows, "p_max"].to_numpy()[::-1] * 2
 
@@ -113,6 +119,7 @@ def test_seeded_changes_move_verdicts(quick, monkeypatch):
     assert _seeded(out, 5, lambda art: None) == FAILS
     monkeypatch.undo()
     assert _seeded(out, 11, pressure_rises) == FAILS
+    assert _seeded(out, 11, load_pressure_rises) == HOLDS  # reproduced under one control
     assert _seeded(out, 13, beta_67) == HOLDS
 
 
