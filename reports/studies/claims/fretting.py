@@ -299,6 +299,8 @@ def regime_change(art: Article) -> Finding:
            UNDECIDED: f"the thresholds ({betas}) straddle the article's {ARTICLE_BETA:g}°",
            HOLDS: f"every threshold is within 1° and its uncertainty of {ARTICLE_BETA:g}°"}[
                verdict]
+    closest = min(ic, key=lambda r: abs(r["beta"] - ARTICLE_BETA))
+    why += f"; closest: {closest['control']}, {closest['at']}: {closest['beta']:.1f}°"
     if "ic" in peak:
         why += (f"; σ_VM,max at cycle {peak['ic'][1]:g} is largest at β = {peak['ic'][0]:g}° "
                 "of the sweep")
