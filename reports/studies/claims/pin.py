@@ -75,7 +75,8 @@ def worn_pin(art: Article) -> Finding:
         return undecided("no gated ic-analytic row of the worn pin (run the analytic "
                          "solver with ic)", panels)
     failed = worn[~worn["passed"].astype(bool)]
-    compared = np.isin(s, worn["s"].to_numpy()) & (at["w_cap"] > 0)  # where Argatov applies
+    depth_rows = worn[worn["quantity"] == "w_max"]  # where Argatov's depth is stated
+    compared = np.isin(s, depth_rows["s"].to_numpy()) & (at["w_cap"] > 0)
     cap = np.abs(r["w_max"].to_numpy()[compared] - at["w_cap"][compared]) / at["w_cap"][compared]
     worst = worn.assign(margin=worn["value"] / worn["tolerance"]).sort_values("margin").iloc[-1]
     measured = (f"{len(worn)} gated ic-analytic rows of the worn pin, worst "
