@@ -35,6 +35,17 @@ CROWN = 0.25
 STICK, SLIP = 1, 2
 
 
+#: a stick cell carries load above this share of the peak pressure (the worn annulus
+#: touches at pressures of 1e-9 p0: in contact, not sliding, and carrying nothing)
+CARRYING = 1e-6
+
+
+def carrying_stick(step) -> np.ndarray:
+    """The stick cells that carry load (:data:`CARRYING`)."""
+    p = step.surface["p_n"]
+    return (step.surface["state"] == STICK) & (p > CARRYING * p.max())
+
+
 def _point(art: Article, beta: float, src: str = SRC, solver: str = "ic"
            ) -> tuple[str, pd.DataFrame] | None:
     r = art.rows(src, solver)
@@ -75,7 +86,7 @@ def regimes(art: Article, src: str = SRC) -> Finding:
     bad += [] if partial else ["β = 90 is not in partial slip"]
     st = _last_step(art, src, "ic", pp)
     w = 1e3 * (st.surface["wear_a"] + st.surface["wear_b"])
-    stick = st.surface["state"] == STICK
+    stick = carrying_stick(st)
     i0, j0 = int(np.argmin(np.abs(st.x))), int(np.argmin(np.abs(st.y)))
     centre = float(w[i0, j0] / w.max()) if w.max() > 0 else math.nan
     inside = float(w[stick].max() / w.max()) if stick.any() else math.nan
@@ -145,7 +156,7 @@ def partial_slip_pressure(art: Article, src: str = SRC) -> Finding:
     steps = art.case(src).steps("ic", param)
     for k in sorted(steps):
         st = steps[k]
-        stick = st.surface["state"] == STICK
+        stick = carrying_stick(st)
         inner = ndimage.binary_erosion(stick)
         if not inner.any():
             continue
@@ -161,7 +172,7 @@ def partial_slip_pressure(art: Article, src: str = SRC) -> Finding:
     last = r.iloc[-1]
     m = measure(art, src, "ic", param, int(last["step"]), "p_max", float(last["p_max"]))
     st = steps[max(steps)]
-    p, stick = st.surface["p_n"], st.surface["state"] == STICK
+    p, stick = st.surface["p_n"], carrying_stick(st)
     edge = stick & ~ndimage.binary_erosion(stick) | ndimage.binary_dilation(stick) & ~stick
     on_edge = bool(edge.flat[int(np.argmax(p))])
     ratio, u = m.value / p0, m.u / p0
