@@ -146,7 +146,8 @@ def _sliding_wear(d: dict, load: Load) -> SlidingWear:
 def _fretting(d: dict, friction: Friction) -> Fretting:
     d = dict(d, output_cycles=tuple(int(v) for v in d.get("output_cycles", ())))
     fretting = _checked("fretting", Fretting, d, positive=("amplitude", "jump"),
-                        minimum={"steps_per_cycle": 4, "cycles": 1})
+                        minimum={"steps_per_cycle": 4, "cycles": 1},
+                        choices={"transverse": ("held", "free")})
     if friction.mu1 == 0:
         raise CaseError("fretting needs friction (friction.mu or mu1/mu2 > 0)")
     _on_jump_grid(fretting.cycles, fretting.jump, "fretting.cycles")

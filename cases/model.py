@@ -143,6 +143,9 @@ class Fretting:
     cycles: int = 100
     jump: float = 1.0  # cycle-jump (wear acceleration) factor
     output_cycles: tuple[int, ...] = ()
+    #: the rigid motion across the imposed one: "held" at zero, or "free" (no resultant
+    #: across it; the shift across is found in each step)
+    transverse: str = "held"
 
     @property
     def simulated_cycles(self) -> int:

@@ -46,6 +46,7 @@ SCHEMA: dict[str, Any] = {
         "cycles": int,
         "jump": float,
         "output_cycles": [int],
+        "transverse": str,
     },
     "stress": {"body": str, "depth": float, "nz": int, "x0": float, "y0": float,
                "z_below": float},

@@ -46,6 +46,14 @@ def supports(case: Case) -> str | None:
         return f"kind {case.kind!r} is not implemented by the FEM reference"
     if case.fem.order != 2:
         return f"fem.order = {case.fem.order}: the FEM reference implements P2 only"
+    if case.fretting is not None and case.fretting.transverse == "free":
+        from .shape import choose_shape
+
+        if choose_shape(case) != "half":
+            return ("fretting.transverse = 'free' with the friction axes oblique to the "
+                    "motion: the FEM's mixed control (Qy = 0) does not converge in gross "
+                    "slip (docs/fem-notes.md, part 5); along the axes it is the held "
+                    "reading, which the FEM runs")
     return None
 
 

@@ -133,10 +133,12 @@ class ContactSolver:
         p_x[box], p_y[box] = sol.p_x, sol.p_y
         return TangentialSolution(p_x, p_y, sol.iterations, sol.residual)
 
-    def _tangential_load(self, Q, shift0, u_tn, g_prev, p_n, p0):
-        """Find the rigid shift g_t,o that makes the tangential resultant equal Q (a.1)."""
+    def _tangential_load(self, Q, shift0, u_tn, g_prev, p_n, p0, free=None):
+        """Find the rigid shift g_t,o that makes the tangential resultant equal Q (a.1);
+        with ``free`` (a unit vector) only the shift along ``free`` is found, for a
+        resultant along it of zero, the rest of ``shift0`` held (mixed control)."""
         fr = self.friction
-        Q = np.asarray(Q, float)
+        Q = np.zeros(2) if free is not None else np.asarray(Q, float)
         P = p_n.sum() * self.dA
         qn = np.hypot(*Q)
         if qn > 0:
@@ -150,16 +152,17 @@ class ContactSolver:
         # resultant on body a opposes the shift of a: dQ/dg_t,o = -k_t in full stick
         a_eff = np.sqrt(np.count_nonzero(p_n > 0) * self.dA / np.pi)
         k_t = 4.0 * a_eff * self.mat.G / (2.0 - self.mat.nu)
-        J = -np.eye(2) * k_t
+        basis = np.eye(2) if free is None else np.asarray(free, float).reshape(2, 1)
+        J = -np.eye(basis.shape[1]) * k_t
         max_step = 2.0 * P * max(fr.mu1, fr.mu2) / k_t  # twice the gross-slip shift
         scale = max(qn, 1e-3 * P * max(fr.mu1, fr.mu2))
 
         def solve_at(zeta, start, tol):
             return self._tangential(zeta, u_tn, g_prev, p_n, start, tol)
 
-        return shift_for_resultant(solve_at, Q, np.asarray(shift0, float), p0, J=J,
-                                   max_step=max_step, scale=scale, P=P, dA=self.dA,
-                                   tol=self.tol)
+        return shift_for_resultant(solve_at, basis.T @ Q, np.asarray(shift0, float), p0,
+                                   J=J, max_step=max_step, scale=scale, P=P, dA=self.dA,
+                                   tol=self.tol, basis=basis)
 
     # ------------------------------------------------------------------ a step
     def solve(
@@ -170,27 +173,34 @@ class ContactSolver:
         approach: float | None = None,
         Q: tuple[float, float] | None = None,
         shift: tuple[float, float] | None = None,
+        free: tuple[float, float] | None = None,
         prev: ContactState | None = None,
         wear_rate: np.ndarray | None = None,
         guess: ContactState | None = None,
         check_edge: bool = True,
     ) -> StepSolution:
         """Solve one step. Tangential control: ``Q`` (load) or ``shift`` (g_t,o, total);
-        neither: the rigid shift of ``prev`` is held.  ``wear_rate`` (mm/MPa per cell)
-        makes the wear of the step implicit: the gap gains ``wear_rate * p_n`` (Eq. 23,
-        29 with a known slip norm); the returned gap includes it.  ``guess`` only starts
+        neither: the rigid shift of ``prev`` is held.  ``free`` (a unit vector, with
+        ``shift``): the shift along ``free`` is not imposed but found so that the
+        resultant along it vanishes (``shift``'s part along it only starts the search).
+        ``wear_rate`` (mm/MPa per cell) makes the wear of the step implicit: the gap
+        gains ``wear_rate * p_n`` (Eq. 23, 29 with a known slip norm); the returned gap
+        includes it.  ``guess`` only starts
         the iterations (default: ``prev``'s tractions); the slip history is ``prev``'s."""
         prev = prev or ContactState.initial((self.grid.nx, self.grid.ny))
         if shift is None:
             shift = (prev.shift_x, prev.shift_y)
         shift = np.asarray(shift, float)
+        if Q is not None and free is not None:
+            raise ValueError("give Q or free, not both")
         nsol, tsol, shift, iters = self._tractions(h, P, approach, Q, shift, prev,
-                                                   guess or prev, wear_rate)
+                                                   guess or prev, wear_rate, free)
         return self._assemble(h, approach, nsol, tsol, shift, prev, wear_rate, iters,
                               check_edge)
 
     def _tractions(self, h, P, approach, Q, shift, prev: ContactState, start: ContactState,
-                   wear_rate) -> tuple[NormalSolution, TangentialSolution, np.ndarray, int]:
+                   wear_rate, free=None
+                   ) -> tuple[NormalSolution, TangentialSolution, np.ndarray, int]:
         """The normal and tangential tractions of a step: one normal and one tangential
         solve when they decouple (K = 0 or no friction), else alternating solves until
         the normal problem is consistent with the tangential tractions (Eq. 6, K != 0).
@@ -209,9 +219,9 @@ class ContactSolver:
             if not frictional:
                 return nsol, TangentialSolution(zero, zero.copy(), 0, 0.0), shift, iters
             u_tn = self.op.tangential_from_normal(nsol.p_n)
-            if Q is not None:
+            if Q is not None or free is not None:
                 tsol, shift, it_t = self._tangential_load(Q, shift, u_tn, g_prev, nsol.p_n,
-                                                          (p_x, p_y))
+                                                          (p_x, p_y), free)
             else:
                 tsol = self._tangential(shift, u_tn, g_prev, nsol.p_n, (p_x, p_y))
                 it_t = tsol.iterations

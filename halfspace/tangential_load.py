@@ -1,5 +1,7 @@
 """Tangential load control, step (a.1) of section 3.4: the rigid shift g_t,o whose
-tractions carry a given resultant Q (Eq. 37).
+tractions carry a given resultant Q (Eq. 37), or, under mixed control, the shift along
+one direction whose resultant along it is given while the shift across it is imposed
+(the fretting path with the transverse motion free: Qy = 0 at an imposed shift along x).
 
 The resultant is a monotone function of the shift; it is found by a quasi-Newton
 (Broyden) iteration on F(g_t,o) = sum(p_t) dA - Q, to |F| <= 10 tol scale (scale: |Q|,
@@ -52,43 +54,54 @@ Solve = Callable[[np.ndarray, tuple[np.ndarray, np.ndarray] | None, float], Tang
 def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
                         p0: tuple[np.ndarray, np.ndarray] | None, *, J: np.ndarray,
                         max_step: float, scale: float, P: float, dA: float,
-                        tol: float) -> tuple[TangentialSolution, np.ndarray, int]:
-    """(tractions, shift, tangential iterations) with ``|sum(p_t) dA - Q| <= 10 tol scale``.
+                        tol: float, basis: np.ndarray | None = None,
+                        ) -> tuple[TangentialSolution, np.ndarray, int]:
+    """(tractions, shift, tangential iterations) with ``|B^T sum(p_t) dA - Q| <= 10 tol
+    scale``.
 
-    ``solve(zeta, start, tol)`` gives the tractions of shift ``zeta`` from the tractions
-    ``start``; ``J`` is the initial dQ/dg_t,o, ``max_step`` caps a Newton step, ``P`` is
-    the normal resultant (converts a solve's residual into the resultant's error)."""
+    ``basis`` B (2 x k, orthonormal columns; default the identity) holds the directions
+    along which the shift is unknown: the shift is ``zeta + B s`` with ``zeta``'s part
+    along B replaced by s, the rest of ``zeta`` held (mixed control: the motion along
+    one direction imposed, the resultant along the other given).  ``Q`` is then the
+    resultant's k components along B.  ``solve(shift, start, tol)`` gives the tractions
+    of a shift from the tractions ``start``; ``J`` (k x k) is the initial d(B^T Q)/ds,
+    ``max_step`` caps a Newton step, ``P`` is the normal resultant (converts a solve's
+    residual into the resultant's error)."""
+    B = np.eye(2) if basis is None else np.asarray(basis, float).reshape(2, -1)
+    zeta = np.asarray(zeta, float)
+    held = zeta - B @ (B.T @ zeta)
     tol_Q = 10.0 * tol * scale
     lowest = min(TOL_FLOOR, FINAL_TOL_FACTOR * tol)
     load = P if P > 0 else np.inf  # no contact: no tractions, any tolerance is met
     exact_tol = max(lowest, FINAL_TOL_FACTOR * tol * min(1.0, scale / load))
 
-    def evaluate(z, start, t):
-        sol = solve(z, start, t)
-        return sol, np.array([sol.p_x.sum(), sol.p_y.sum()]) * dA - Q
+    def evaluate(s, start, t):
+        sol = solve(held + B @ s, start, t)
+        return sol, B.T @ np.array([sol.p_x.sum(), sol.p_y.sum()]) * dA - Q
 
+    zeta = B.T @ zeta  # the unknowns s from here on
     sol, F = evaluate(zeta, p0, max(INNER_TOL_MAX, exact_tol))
     iters, exact = sol.iterations, INNER_TOL_MAX <= exact_tol
     final, fresh, step = exact, False, max_step
     for _ in range(MAX_NEWTON):
-        if np.hypot(*F) <= tol_Q:
+        if np.linalg.norm(F) <= tol_Q:
             if exact:
-                return sol, zeta, iters
+                return sol, held + B @ zeta, iters
             sol, F = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
             iters, exact, final = iters + sol.iterations, True, True
             continue
         dz = -np.linalg.solve(J, F)
-        if np.hypot(*dz) > step:  # the secant flattens near gross slip
-            dz *= step / np.hypot(*dz)
+        if np.linalg.norm(dz) > step:  # the secant flattens near gross slip
+            dz *= step / np.linalg.norm(dz)
         t = exact_tol if final else max(exact_tol, min(
-            INNER_TOL_MAX, INNER_TOL_FACTOR * np.hypot(*F) / load))
+            INNER_TOL_MAX, INNER_TOL_FACTOR * np.linalg.norm(F) / load))
         trial, F_new = evaluate(zeta + dz, (sol.p_x, sol.p_y), t)
         iters, trial_exact = iters + trial.iterations, t <= exact_tol
-        bound = (1.0 - SUFFICIENT_DECREASE) * np.hypot(*F)
-        if np.hypot(*F_new) > bound and not trial_exact:
+        bound = (1.0 - SUFFICIENT_DECREASE) * np.linalg.norm(F)
+        if np.linalg.norm(F_new) > bound and not trial_exact:
             trial, F_new = evaluate(zeta + dz, (sol.p_x, sol.p_y), exact_tol)
             iters, trial_exact, final = iters + trial.iterations, True, True
-        if np.hypot(*F_new) <= bound:
+        if np.linalg.norm(F_new) <= bound:
             J = J + np.outer(F_new - F - J @ dz, dz) / float(dz @ dz)  # Broyden update
             zeta, sol, F, exact = zeta + dz, trial, F_new, trial_exact
             fresh, step = False, max_step
@@ -104,21 +117,21 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
             iters += sol.iterations
             continue
         if fresh:
-            step = 0.5 * min(step, np.hypot(*dz))
+            step = 0.5 * min(step, np.linalg.norm(dz))
         else:
             J, probe_iters = _fd_jacobian(evaluate, zeta, F, sol, 1e-3 * max_step, exact_tol)
             iters, fresh = iters + probe_iters, True
     raise ContactNotConverged(
-        f"tangential load control did not converge: |Q - Q_target| = {np.hypot(*F):.3e} N "
+        f"tangential load control did not converge: |Q - Q_target| = {np.linalg.norm(F):.3e} N "
         f"> {tol_Q:.3e} N (tangential solves to residual {exact_tol:.1e})")
 
 
 def _fd_jacobian(evaluate, zeta: np.ndarray, F: np.ndarray, sol: TangentialSolution,
                  h: float, tol: float) -> tuple[np.ndarray, int]:
-    """dF/dg_t,o by forward differences of step ``h`` (same tolerance as F's solve)."""
-    J, iters = np.empty((2, 2)), 0
-    for col in range(2):
-        e = np.zeros(2)
+    """dF/ds by forward differences of step ``h`` (same tolerance as F's solve)."""
+    J, iters = np.empty((F.size, zeta.size)), 0
+    for col in range(zeta.size):
+        e = np.zeros(zeta.size)
         e[col] = h
         probe, Fp = evaluate(zeta + e, (sol.p_x, sol.p_y), tol)
         iters += probe.iterations

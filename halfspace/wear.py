@@ -156,7 +156,8 @@ def fretting(case: Case, progress: bool = False,
     normal = {"P": case.load.P} if case.load.load_controlled else {
         "approach": case.load.approach}
     d = slide_direction(case.load.slide_angle)
-    first = _initial_loading(case, solver, h0, normal, d)
+    free = np.array([-d[1], d[0]]) if fr.transverse == "free" else None
+    first = _initial_loading(case, solver, h0, normal, d, free)
     watch = RegimeWatch(case, first)
     state = first.state
     path = fretting_path(fr.amplitude, fr.steps_per_cycle)
@@ -168,8 +169,9 @@ def fretting(case: Case, progress: bool = False,
         seen = CycleObservation(case.grid.dx * case.grid.dy)
         energy, Q_prev, u_prev = 0.0, state_Q(state, case), fr.amplitude
         for k, u in enumerate(path):
-            sol, dw_a, dw_b = _fretting_step(case, solver, h0 + w_a + w_b, normal, u * d,
-                                             state, J, last_cycle[k])
+            shift = _shift(u, d, free, last_cycle[k] or state)
+            sol, dw_a, dw_b = _fretting_step(case, solver, h0 + w_a + w_b, normal, shift,
+                                             state, J, last_cycle[k], free)
             w_a, w_b = w_a + dw_a, w_b + dw_b
             _check_wear(w_a, w_b)
             state = last_cycle[k] = sol.state
@@ -192,14 +194,24 @@ def fretting(case: Case, progress: bool = False,
 
 
 def _initial_loading(case: Case, solver: ContactSolver, h0: np.ndarray, normal: dict,
-                     d: np.ndarray) -> StepSolution:
+                     d: np.ndarray, free: np.ndarray | None) -> StepSolution:
     """The normal load (or approach), then 0 -> +A in a quarter cycle (no wear counted);
     the step solution at +A."""
     fr = case.fretting
     sol = solver.solve(h0, **normal)
     for u in fr.loading_path():
-        sol = solver.solve(h0, **normal, shift=u * d, prev=sol.state)
+        sol = solver.solve(h0, **normal, shift=_shift(u, d, free, sol.state), free=free,
+                           prev=sol.state)
     return sol
+
+
+def _shift(u: float, d: np.ndarray, free: np.ndarray | None,
+           start: ContactState) -> np.ndarray:
+    """The rigid shift u d imposed along ``d``; with the transverse motion ``free``, plus
+    ``start``'s shift along ``free`` (where the search for it starts)."""
+    if free is None:
+        return u * d
+    return u * d + float(free @ (start.shift_x, start.shift_y)) * free
 
 
 _CYCLE_COLUMNS = ("cycle", "energy", "min_stick_area", "gross_slip", "w_max",
@@ -354,7 +366,7 @@ def state_Q(state: ContactState, case: Case) -> np.ndarray:
     return np.array([state.p_x.sum(), state.p_y.sum()]) * dA
 
 
-def _fretting_step(case, solver, h, normal, shift, prev, J, guess=None):
+def _fretting_step(case, solver, h, normal, shift, prev, J, guess=None, free=None):
     """One fretting step, wear semi-implicit: a predictor solve gives the slip; the
     corrector solves the step with the wear J p_n ||dg_t||_i of that slip in the gap
     (implicit in p_n, as step IV, explicit in the slip).  The wear added afterwards is
@@ -363,11 +375,14 @@ def _fretting_step(case, solver, h, normal, shift, prev, J, guess=None):
     passes at J = 1000, beta = 90); the error of the lagged slip is O(J) and is what the
     cycle-jump convergence test measures.  The iterations start from ``guess`` (the same
     point of the previous cycle) and the corrector from the predictor; the slip history
-    is ``prev``'s either way."""
-    sol = solver.solve(h, **normal, shift=shift, prev=prev, guess=guess)
+    is ``prev``'s either way.  ``free``: the transverse shift is found (Qy = 0 across
+    the imposed motion), the corrector's search starting from the predictor's."""
+    sol = solver.solve(h, **normal, shift=shift, free=free, prev=prev, guess=guess)
     if case.a.i1 == case.a.i2 == case.b.i1 == case.b.i2 == 0:
         return sol, np.zeros_like(h), np.zeros_like(h)
     sn_a, sn_b = slip_norms(case, sol.slip_x, sol.slip_y)
-    sol = solver.solve(h, **normal, shift=shift, prev=prev, wear_rate=J * (sn_a + sn_b),
-                       guess=sol.state)
+    if free is not None:  # the imposed part is the same; the free part starts found
+        shift = np.array([sol.state.shift_x, sol.state.shift_y])
+    sol = solver.solve(h, **normal, shift=shift, free=free, prev=prev,
+                       wear_rate=J * (sn_a + sn_b), guess=sol.state)
     return sol, J * sn_a * sol.state.p_n, J * sn_b * sol.state.p_n

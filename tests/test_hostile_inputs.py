@@ -132,6 +132,8 @@ CASE_FILES = [
     ("fretting-output-beyond", FRET + "output_cycles = [3]\n", [], 2,
      "fretting.output_cycles[0] = 3: must lie in (0, fretting.cycles = 2]"),
     ("fretting-output-repeated", FRET + "output_cycles = [1, 1]\n", [], 2, "repeated cycle"),
+    ("fretting-transverse", FRET + 'transverse = "sideways"\n', [], 2,
+     "fretting.transverse = 'sideways': must be one of 'held', 'free'"),
     ("fretting-output-nested", FRET + "output_cycles = [[1]]\n", [], 2,
      "fretting.output_cycles[0] = [1]: must be an integer"),
     ("fretting-no-friction", FRET.replace("[friction]\nmu = 0.3\n", ""), [], 2,

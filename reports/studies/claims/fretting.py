@@ -23,10 +23,18 @@ from reports.studies.claims.finding import (
     measure,
     undecided,
 )
+from reports.studies.claims.sources import SOURCES
 
 SRC = "fretting"
-#: the two normal controls the article leaves open, as sources
+#: the two normal controls the article leaves open, as sources (the transverse motion
+#: held; at β = 0 and 90° held and free are the same problem)
 CONTROLS = {"approach held": "fretting", "load held": "fretting_load"}
+#: the four readings of the set-up: both normal controls, the transverse motion held or
+#: free (Qy = 0)
+READINGS = {**CONTROLS, "approach held, transverse free": "fretting_free",
+            "load held, transverse free": "fretting_load_free"}
+#: the reading of a threshold's case (``thresholds.csv``'s case column)
+READING_OF = {SOURCES[src].name: label for label, src in READINGS.items()}
 #: the article's regime-change angle (claim 13) and its printed resolution
 ARTICLE_BETA = 67.0
 #: the crown of claim 10: the wear at the centre of the stick zone below this share of
@@ -223,14 +231,15 @@ def _grows(art: Article, src: str, param: str, step: int) -> bool:
     return bool(r["f1"] > r["f2"] > r["f3"])
 
 
-def under_both_controls(judge: Callable[[Article, str], Finding]
-                        ) -> Callable[[Article], Finding]:
-    """A claim judged under the held approach and under the held load (the article leaves
-    the normal control open): it holds if it holds under one, and says under which; it
-    does not hold if it holds under neither."""
+def under_readings(judge: Callable[[Article, str], Finding],
+                   readings: dict[str, str] = CONTROLS) -> Callable[[Article], Finding]:
+    """A claim judged under each reading of the set-up the article leaves open (the held
+    approach and the held load; with ``READINGS`` also the transverse motion free): it
+    holds if it holds under one, and says under which; it does not hold if it holds under
+    none."""
     def both(art: Article) -> Finding:
         found = {}
-        for control, src in CONTROLS.items():
+        for control, src in readings.items():
             try:
                 found[control] = judge(art, src)
             except MissingSource as exc:
@@ -239,8 +248,13 @@ def under_both_controls(judge: Callable[[Article, str], Finding]
         holds = [c for c, f in found.items() if f.verdict == HOLDS]
         verdict = HOLDS if holds else FAILS if all(v == FAILS for v in verdicts) else UNDECIDED
         why = "; ".join(f"{c}: {f.verdict} ({f.why})" for c, f in found.items())
+        if readings is CONTROLS:
+            why += ("; the transverse motion held or free is the same problem at β = 0 and "
+                    "90° (the friction and wear axes lie along the motion)")
         if holds:
-            why = f"reproduced with the {' and the '.join(holds)}; " + why
+            which = ("every reading" if len(holds) == len(found) > 1 else
+                     "the " + "; the ".join(holds))
+            why = f"reproduced with {which}; " + why
         panels = tuple(Panel(f"{c}: {p.title}", p.xlabel, p.ylabel, p.series, p.markers)
                        for c, f in found.items() for p in f.panels)
         return Finding("; ".join(f"{c}: {f.measured}" for c, f in found.items()),
@@ -267,7 +281,7 @@ def _thresholds(t: pd.DataFrame) -> list[dict]:
         g = g.sort_values("cell_size")
         fine = g.iloc[0]
         shift = float(np.nanmax(np.abs(g["threshold"] - fine["threshold"])))
-        out.append({"control": "load held" if "load" in str(case) else "approach held",
+        out.append({"control": READING_OF.get(str(case), str(case)),
                     "case": case, "at": str(at), "cycle": _cycle_of(str(at)),
                     "beta": float(fine["threshold"]), "u": float(fine["uncertainty"]) + shift,
                     "grids": ", ".join(f"{r.grid} {r.threshold:.1f}" for r in g.itertuples())})
@@ -306,7 +320,7 @@ def regime_change(art: Article) -> Finding:
     verdict = HOLDS if all(near) else FAILS if not any(near) else UNDECIDED
     betas = ", ".join(f"{r['beta']:.1f}°" for r in ic)
     why = {FAILS: f"the half-space solver puts the change at {betas}, none near "
-                  f"{ARTICLE_BETA:g}°, under every normal control, output and grid",
+                  f"{ARTICLE_BETA:g}°, under every reading of the set-up, output and grid",
            UNDECIDED: f"the thresholds ({betas}) straddle the article's {ARTICLE_BETA:g}°",
            HOLDS: f"every threshold is within 1° and its uncertainty of {ARTICLE_BETA:g}°"}[
                verdict]

@@ -45,8 +45,14 @@ class Source:
 
 MU = (0.0, 0.15, 0.25, 0.35, 0.5, 0.65)
 BETA = (0.0, 30.0, 60.0, 70.0, 80.0, 90.0)
-#: the fretting case under the other normal control the article leaves open (load held)
+#: the fretting case under the other normal control the article leaves open (load held),
+#: and both controls with the other transverse motion it leaves open (free: Qy = 0)
 FRETTING_LOAD = str(CASES_DIR / "examples" / "fretting_orthotropic_load.toml")
+FRETTING_FREE = str(CASES_DIR / "examples" / "fretting_orthotropic_free.toml")
+FRETTING_LOAD_FREE = str(CASES_DIR / "examples" / "fretting_orthotropic_load_free.toml")
+#: the oblique angle of claim 11: the only sweep point where the transverse motion held
+#: or free are different problems (at β = 0 and 90° the held reading carries no Qy)
+BETA_OBLIQUE = (30.0,)
 SOURCES: dict[str, Source] = {
     "hertz": Source("hertz"),
     "sliding": Source("sliding_friction", "friction.mu", MU),
@@ -54,6 +60,8 @@ SOURCES: dict[str, Source] = {
     "pin_ortho": Source("pin_on_disk_orthotropic", "friction.beta", (0.0, 45.0, 90.0)),
     "fretting": Source("fretting_orthotropic", "friction.beta", BETA),
     "fretting_load": Source(FRETTING_LOAD, "friction.beta", BETA),
+    "fretting_free": Source(FRETTING_FREE, "friction.beta", BETA_OBLIQUE),
+    "fretting_load_free": Source(FRETTING_LOAD_FREE, "friction.beta", BETA_OBLIQUE),
 }
 
 
@@ -81,16 +89,19 @@ THRESHOLDS = (
     # claim 4: where the sliding sphere's σ_VM maximum reaches the surface (s = 0)
     ThresholdSpec(4, "sliding_friction", "friction.mu", "vm_max_on_surface", 0.2, 0.5,
                   0.005, (1.0 / 1.5, 1.0, ARTICLE, 2.0)),
-    # claim 13: the fretting regime change in β, under both normal controls
-    ThresholdSpec(13, "fretting_orthotropic", "friction.beta", "gross_to_partial_slip",
-                  45.0, 90.0, 1.0, (1.0 / 1.5, 1.0), every_output=True, cycles=(1, 100)),
-    ThresholdSpec(13, FRETTING_LOAD, "friction.beta", "gross_to_partial_slip",
-                  45.0, 90.0, 1.0, (1.0 / 1.5, 1.0), every_output=True, cycles=(1, 100)),
+    # claim 13: the fretting regime change in β, under both normal controls, with the
+    # transverse motion held and free
+    *(ThresholdSpec(13, case, "friction.beta", "gross_to_partial_slip", 45.0, 90.0, 1.0,
+                    (1.0 / 1.5, 1.0), every_output=True, cycles=(1, 100))
+      for case in ("fretting_orthotropic", FRETTING_LOAD, FRETTING_FREE, FRETTING_LOAD_FREE)),
 )
-#: the sources each claim reads (claims 4 and 13 also read thresholds)
+#: the sources each claim reads (claims 4 and 13 also read thresholds); claims 10 and 12
+#: are at β = 0 and 90°, where the transverse motion held or free is the same problem
 NEEDS = {1: ("hertz",), 2: ("pin",), 3: ("pin",), 4: ("pin",), 5: ("sliding",),
          **{n: ("pin_ortho",) for n in (6, 7, 8, 9)},
-         **{n: ("fretting", "fretting_load") for n in (10, 11, 12)}, 13: ("fretting",)}
+         **{n: ("fretting", "fretting_load") for n in (10, 12)},
+         11: ("fretting", "fretting_load", "fretting_free", "fretting_load_free"),
+         13: ("fretting",)}
 
 
 def candidates(source: Source) -> list[str]:

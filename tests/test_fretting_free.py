@@ -1,0 +1,64 @@
+"""Fretting with the transverse motion free (``fretting.transverse = "free"``): the rigid
+shift across the imposed motion is found in every step so that the resultant across it
+vanishes (mixed control, :func:`halfspace.tangential_load.shift_for_resultant` with a
+basis).  Checked against the exact facts it must meet: Qy = 0, the friction ellipse's
+capacity along the motion, and the symmetry that makes it the held reading at β = 0 and
+90°."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from cases.loader import CASES_DIR, load_case
+from halfspace import solve
+from halfspace.friction import mu_norm
+
+ONE_CYCLE = {"fretting.cycles": 1000, "fretting.jump": 500.0,
+             "fretting.output_cycles": [1000]}
+HELD_LOAD = str(CASES_DIR / "examples" / "fretting_orthotropic_load.toml")
+
+
+def _run(beta: float, transverse: str, name: str = "fretting_orthotropic"):
+    case = load_case(name, quick=True, overrides={
+        **ONE_CYCLE, "fretting.transverse": transverse})[0]
+    case = case.with_changes(friction=replace(case.friction, beta=beta))
+    return case, solve(case)
+
+
+@pytest.mark.parametrize("beta", [0.0, 90.0])
+def test_free_is_held_where_the_axes_lie_along_the_motion(beta):
+    """At β = 0 and 90° the problem is symmetric in y -> -y: the held reading carries no
+    Qy, so leaving the motion free changes nothing (to the solver's tolerance)."""
+    _, held = _run(beta, "held")
+    _, free = _run(beta, "free")
+    a, b = held.steps[-1], free.steps[-1]
+    assert abs(a.scalars["Qy"]) <= 1e-9 * a.scalars["P"]
+    assert abs(b.scalars["shift_y"]) <= 1e-9 * b.scalars["shift_x"]
+    for key in ("p_n", "p_x", "wear_a", "wear_b"):
+        scale = np.abs(a.surface[key]).max()
+        assert np.abs(a.surface[key] - b.surface[key]).max() <= 1e-6 * scale, key
+    assert b.scalars["stick_area"] == a.scalars["stick_area"]
+
+
+@pytest.mark.parametrize(("beta", "name"), [(60.0, "fretting_orthotropic"),
+                                            (30.0, HELD_LOAD)])
+def test_oblique_free_motion_carries_no_transverse_load(beta, name):
+    """At an oblique β the held reading carries a large Qy, the free one none at any
+    step; in gross slip the free reading's Qx is at most what the friction ellipse
+    carries along x, P / ||e_x||_mu, which the held reading's exceeds (its traction is
+    oblique)."""
+    case, free = _run(beta, "free", name)
+    _, held = _run(beta, "held", name)
+    for run in (free, held):
+        assert (np.asarray(run.tables["cycles"]["min_stick_area"]) == 0).all()  # gross
+    P = free.steps[-1].scalars["P"]
+    assert np.abs(np.asarray(free.tables["loops"]["Qy"])).max() <= 1e-6 * P
+    assert np.abs(np.asarray(held.tables["loops"]["Qy"])).max() > 0.05 * P
+    along_x = float(mu_norm(np.array(1.0), np.array(0.0), case.friction))
+    assert abs(free.steps[-1].scalars["Qx"]) <= P / along_x * (1 + 1e-6)
+    held_last = held.steps[-1].scalars
+    assert abs(held_last["Qx"]) > held_last["P"] / along_x
+    assert free.steps[-1].scalars["shift_y"] != 0.0
