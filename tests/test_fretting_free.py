@@ -62,3 +62,16 @@ def test_oblique_free_motion_carries_no_transverse_load(beta, name):
     held_last = held.steps[-1].scalars
     assert abs(held_last["Qx"]) > held_last["P"] / along_x
     assert free.steps[-1].scalars["shift_y"] != 0.0
+
+
+def test_the_fem_declines_only_the_oblique_free_reading():
+    """The FEM runs the free reading where it is the held one (the half block, β = 0 and
+    90°) and declines an oblique one with the key named (docs/fem-notes.md, part 5)."""
+    import fem_reference
+
+    case = load_case("fretting_orthotropic", quick=True,
+                     overrides={"fretting.transverse": "free"})[0]
+    for beta, declined in ((0.0, False), (90.0, False), (60.0, True)):
+        why = fem_reference.supports(case.with_changes(
+            friction=replace(case.friction, beta=beta)))
+        assert (why is not None) == declined and (not declined or "transverse" in why)
