@@ -57,6 +57,13 @@ def test_the_numbers_behind_the_verdicts(quick):
     assert findings[9].values["angle"] == pytest.approx(findings[9].values["angle_exact"],
                                                         abs=0.05)
     assert "80." in findings[13].measured or "79." in findings[13].measured
+    # the free transverse motion carries only P / ||e_x||_mu along x, less than the held
+    # reading's oblique traction: gross slip reaches a larger β in the first cycle
+    first = {k.partition(": ")[2]: v for k, v in findings[13].values.items()
+             if k.startswith("beta_first")}
+    assert set(first) == set(READINGS)
+    for control in CONTROLS:
+        assert first[f"{control}, transverse free"] > first[control] + 1.0
 
 
 def test_the_page_figures_and_data(quick):

@@ -340,4 +340,5 @@ def regime_change(art: Article) -> Finding:
     return Finding("; ".join(parts + checks), "± half the bisection bracket plus the "
                    "largest grid shift", verdict, why, (panel,),
                    {"beta_peak": peak.get("ic", (math.nan,))[0],
-                    "beta_first": ic[0]["beta"]})
+                    **{f"beta_first: {r['control']}": r["beta"] for r in ic
+                       if r["cycle"] == 1}})
