@@ -60,13 +60,14 @@ def supports(case: Case) -> str | None:
 def by_default(case: Case) -> str | None:
     """None when a run without ``--solver`` should include the FEM on ``case``, else why
     it runs only on request: fretting, whose worn partial-slip stick zone the FEM and the
-    half-space solver, each converged in space, do not agree on, and whose article-size
-    sweeps take hours (docs/fem-notes.md, part 5)."""
+    half-space solver do not agree on, and whose article-size sweeps take hours
+    (docs/fem-notes.md, part 5)."""
     if case.kind == "fretting":
         return ("fretting runs through the FEM only on request (--solver ic,fem,analytic): "
                 "in the worn stick zone of partial slip it does not agree with the "
-                "half-space solver, both converged in space (cause not found), and "
-                "the article-size sweeps take hours (docs/fem-notes.md, part 5)")
+                "half-space solver (its stick edge erodes at every tangential extreme; "
+                "not shown to vanish under mesh refinement), and the article-size sweeps "
+                "take hours (docs/fem-notes.md, part 5)")
     return None
 
 
