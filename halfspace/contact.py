@@ -185,8 +185,8 @@ class ContactSolver:
         resultant along it vanishes (``shift``'s part along it only starts the search).
         ``wear_rate`` (mm/MPa per cell) makes the wear of the step implicit: the gap
         gains ``wear_rate * p_n`` (Eq. 23, 29 with a known slip norm); the returned gap
-        includes it.  ``guess`` only starts
-        the iterations (default: ``prev``'s tractions); the slip history is ``prev``'s."""
+        includes it.  ``guess`` only starts the iterations (default: ``prev``'s
+        tractions); the slip history is ``prev``'s."""
         prev = prev or ContactState.initial((self.grid.nx, self.grid.ny))
         if shift is None:
             shift = (prev.shift_x, prev.shift_y)
