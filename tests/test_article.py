@@ -136,6 +136,11 @@ def test_seeded_changes_move_verdicts(quick, monkeypatch):
     assert _seeded(out, 11, load_pressure_rises) == HOLDS  # reproduced under one control
     assert _seeded(out, 11, held_pressure_rises) == HOLDS  # with the transverse motion free
     assert _seeded(out, 13, beta_67) == HOLDS
+    from reports.studies.claims import fretting
+
+    monkeypatch.setattr(fretting, "_load_lost", lambda art, src, param: 1000.0)
+    assert _seeded(out, 11, lambda art: None) == FAILS  # worn away under every reading
+    monkeypatch.undo()
 
 
 @pytest.mark.skipif(CHROMIUM is None, reason="headless Chromium is not installed")

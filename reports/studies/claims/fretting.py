@@ -132,17 +132,30 @@ def gross_slip_pressure(art: Article, src: str = SRC) -> Finding:
     up, ua = np.array(up), np.array(ua)
     falls = bool(np.all(np.diff(p) < up[1:] + up[:-1]))
     grows = bool(np.all(np.diff(a) > -(ua[1:] + ua[:-1])))
-    ok = falls and grows and p[-1] + up[-1] < p[0] and a[-1] - ua[-1] > a[0]
+    lost = _load_lost(art, src, param)
+    ok = (falls and grows and p[-1] + up[-1] < p[0] and a[-1] - ua[-1] > a[0]
+          and lost > cyc[-1])
     measured = (f"ic, β = 30°, from the unworn contact (Hertz at the held approach) over "
                 f"cycles {', '.join(f'{c:g}' for c in cyc)}: p_max/p0 "
                 f"{', '.join(fmt(v / p0) for v in p)}, contact area/πa0² "
-                f"{', '.join(fmt(v / a[0]) for v in a)}")
+                f"{', '.join(fmt(v / a[0]) for v in a)}"
+                + (f"; the load lost at cycle {lost:g}" if math.isfinite(lost) else ""))
     panel = Panel("β = 30°: pressure and contact area", "N (cycles)", "relative to cycle 0",
                   {"p_max / p0": (cyc, p / p0), "area / πa0²": (cyc, a / a[0])}, markers=True)
-    return Finding(measured, "each value ± its uncertainty", HOLDS if ok else FAILS,
-                   "the pressure falls and the contact grows at every output" if ok else
-                   "the pressure does not fall or the contact does not grow throughout",
+    why = ("the pressure falls and the contact grows at every output" if ok else
+           f"the contact is worn away: the load is lost (the run's load_lost event) by cycle "
+           f"{lost:g}, before the last output" if lost <= cyc[-1] else
+           "the pressure does not fall or the contact does not grow throughout")
+    return Finding(measured, "each value ± its uncertainty", HOLDS if ok else FAILS, why,
                    (panel,))
+
+
+def _load_lost(art: Article, src: str, param: str) -> float:
+    """The cycle of the ic run's ``load_lost`` event (a held approach: P below 1 % of the
+    initial load, reports/README.md, events); infinity if none."""
+    e = art.case(src).events
+    e = e[(e["solver"] == "ic") & (e["param"] == param) & (e["event"] == "load_lost")]
+    return float(e["cycle"].min()) if len(e) else math.inf
 
 
 def partial_slip_pressure(art: Article, src: str = SRC) -> Finding:
