@@ -60,6 +60,9 @@ class ContactState:
     shift_x: float = 0.0  # rigid tangential displacement g_t,o
     shift_y: float = 0.0
     approach: float = 0.0
+    #: the secant dQ/ds of a step whose transverse shift was free (mixed control): it
+    #: starts the search of the same step of the next cycle (None: none)
+    dQ_ds: np.ndarray | None = None
 
     @classmethod
     def initial(cls, shape: tuple[int, int]) -> ContactState:
@@ -133,10 +136,12 @@ class ContactSolver:
         p_x[box], p_y[box] = sol.p_x, sol.p_y
         return TangentialSolution(p_x, p_y, sol.iterations, sol.residual)
 
-    def _tangential_load(self, Q, shift0, u_tn, g_prev, p_n, p0, free=None):
+    def _tangential_load(self, Q, shift0, u_tn, g_prev, p_n, p0, free=None, dQ_ds=None):
         """Find the rigid shift g_t,o that makes the tangential resultant equal Q (a.1);
         with ``free`` (a unit vector) only the shift along ``free`` is found, for a
-        resultant along it of zero, the rest of ``shift0`` held (mixed control)."""
+        resultant along it of zero, the rest of ``shift0`` held (mixed control), the
+        search started from the secant ``dQ_ds`` if given.  Returns (tractions, shift,
+        iterations, the last secant)."""
         fr = self.friction
         Q = np.zeros(2) if free is not None else np.asarray(Q, float)
         P = p_n.sum() * self.dA
@@ -154,8 +159,15 @@ class ContactSolver:
         k_t = 4.0 * a_eff * self.mat.G / (2.0 - self.mat.nu)
         basis = np.eye(2) if free is None else np.asarray(free, float).reshape(2, 1)
         J = -np.eye(basis.shape[1]) * k_t
+        if dQ_ds is not None and np.shape(dQ_ds) == J.shape:
+            J = np.asarray(dQ_ds, float)
         max_step = 2.0 * P * max(fr.mu1, fr.mu2) / k_t  # twice the gross-slip shift
-        scale = max(qn, 1e-3 * P * max(fr.mu1, fr.mu2))
+        # the resultant's scale: |Q|, or a small share of the friction's when Q nearly
+        # vanishes on a load path; under mixed control the friction's itself, since the
+        # imposed component's resultant is only as accurate as the solves (module doc of
+        # tangential_load: about tol P)
+        scale = (P * max(fr.mu1, fr.mu2) if free is not None else
+                 max(qn, 1e-3 * P * max(fr.mu1, fr.mu2)))
 
         def solve_at(zeta, start, tol):
             return self._tangential(zeta, u_tn, g_prev, p_n, start, tol)
@@ -193,41 +205,46 @@ class ContactSolver:
         shift = np.asarray(shift, float)
         if Q is not None and free is not None:
             raise ValueError("give Q or free, not both")
-        nsol, tsol, shift, iters = self._tractions(h, P, approach, Q, shift, prev,
-                                                   guess or prev, wear_rate, free)
-        return self._assemble(h, approach, nsol, tsol, shift, prev, wear_rate, iters,
-                              check_edge)
+        nsol, tsol, shift, iters, dQ_ds = self._tractions(h, P, approach, Q, shift, prev,
+                                                          guess or prev, wear_rate, free)
+        sol = self._assemble(h, approach, nsol, tsol, shift, prev, wear_rate, iters,
+                             check_edge)
+        sol.state.dQ_ds = dQ_ds
+        return sol
 
     def _tractions(self, h, P, approach, Q, shift, prev: ContactState, start: ContactState,
                    wear_rate, free=None
-                   ) -> tuple[NormalSolution, TangentialSolution, np.ndarray, int]:
+                   ) -> tuple[NormalSolution, TangentialSolution, np.ndarray, int,
+                              np.ndarray | None]:
         """The normal and tangential tractions of a step: one normal and one tangential
         solve when they decouple (K = 0 or no friction), else alternating solves until
         the normal problem is consistent with the tangential tractions (Eq. 6, K != 0).
-        Returns (normal solution, tangential solution, rigid shift, iterations)."""
+        Returns (normal solution, tangential solution, rigid shift, iterations, the
+        secant dQ/ds of a free transverse shift or None)."""
         shape = (self.grid.nx, self.grid.ny)
         frictional = self.friction.mu1 > 0
         coupled = self.op.coupled and frictional
         p_x, p_y = start.p_x, start.p_y
         p_n0 = start.p_n if np.any(start.p_n > 0) else None
         g_prev = (prev.g_x, prev.g_y)
-        iters, zero = 0, np.zeros(shape)
+        iters, zero, dQ_ds = 0, np.zeros(shape), start.dQ_ds if free is not None else None
         for _ in range(200 if coupled else 1):
             h_n = h + self.op.normal_from_tangential(p_x, p_y) if coupled else h
             nsol = self._normal(h_n, P, approach, p_n0, wear_rate)
             iters += nsol.iterations
             if not frictional:
-                return nsol, TangentialSolution(zero, zero.copy(), 0, 0.0), shift, iters
+                return nsol, TangentialSolution(zero, zero.copy(), 0, 0.0), shift, iters, None
             u_tn = self.op.tangential_from_normal(nsol.p_n)
             if Q is not None or free is not None:
-                tsol, shift, it_t = self._tangential_load(Q, shift, u_tn, g_prev, nsol.p_n,
-                                                          (p_x, p_y), free)
+                tsol, shift, it_t, J = self._tangential_load(Q, shift, u_tn, g_prev,
+                                                             nsol.p_n, (p_x, p_y), free, dQ_ds)
+                dQ_ds = J if free is not None else None
             else:
                 tsol = self._tangential(shift, u_tn, g_prev, nsol.p_n, (p_x, p_y))
                 it_t = tsol.iterations
             iters += it_t
             if not coupled:
-                return nsol, tsol, shift, iters
+                return nsol, tsol, shift, iters, dQ_ds
             change = np.hypot(np.linalg.norm(tsol.p_x - p_x), np.linalg.norm(tsol.p_y - p_y))
             p_x, p_y, p_n0 = tsol.p_x, tsol.p_y, nsol.p_n
             # converged when the normal problem is consistent with the new tractions
@@ -238,7 +255,7 @@ class ContactSolver:
             if (normal_residual(nsol.p_n, g_chk, self.c_n,
                                 roundoff_floor(self.c_n, h_chk, approach)) < self.tol
                     and change <= self.tol * np.linalg.norm(nsol.p_n)):
-                return nsol, tsol, shift, iters
+                return nsol, tsol, shift, iters, dQ_ds
         raise ContactNotConverged("normal-tangential coupling (K != 0) did not converge "
                                   f"in 200 passes: traction change {change:.3e}")
 

@@ -55,9 +55,9 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
                         p0: tuple[np.ndarray, np.ndarray] | None, *, J: np.ndarray,
                         max_step: float, scale: float, P: float, dA: float,
                         tol: float, basis: np.ndarray | None = None,
-                        ) -> tuple[TangentialSolution, np.ndarray, int]:
-    """(tractions, shift, tangential iterations) with ``|B^T sum(p_t) dA - Q| <= 10 tol
-    scale``.
+                        ) -> tuple[TangentialSolution, np.ndarray, int, np.ndarray]:
+    """(tractions, shift, tangential iterations, the last secant of d(B^T Q)/ds) with
+    ``|B^T sum(p_t) dA - Q| <= 10 tol scale``.
 
     ``basis`` B (2 x k, orthonormal columns; default the identity) holds the directions
     along which the shift is unknown: the shift is ``zeta + B s`` with ``zeta``'s part
@@ -86,7 +86,7 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
     for _ in range(MAX_NEWTON):
         if np.linalg.norm(F) <= tol_Q:
             if exact:
-                return sol, held + B @ zeta, iters
+                return sol, held + B @ zeta, iters, J
             sol, F = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
             iters, exact, final = iters + sol.iterations, True, True
             continue
