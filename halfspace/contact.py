@@ -153,6 +153,8 @@ class ContactSolver:
                 raise ContactNotConverged(
                     f"tangential load |Q| = {qn:.6g} N reaches the friction capacity "
                     f"{capacity:.6g} N: gross sliding, use load.sliding instead")
+        if free is not None and P == 0:  # no contact: no tractions, any shift will do
+            return self._tangential(shift0, u_tn, g_prev, p_n, p0), shift0, 0, dQ_ds
         # Mindlin stick stiffness 8 G* a, 1/G* = 2 (2 - nu) / G (Eq. 6 averages); the
         # resultant on body a opposes the shift of a: dQ/dg_t,o = -k_t in full stick
         a_eff = np.sqrt(np.count_nonzero(p_n > 0) * self.dA / np.pi)
@@ -162,6 +164,11 @@ class ContactSolver:
         if dQ_ds is not None and np.shape(dQ_ds) == J.shape:
             J = np.asarray(dQ_ds, float)
         max_step = 2.0 * P * max(fr.mu1, fr.mu2) / k_t  # twice the gross-slip shift
+        if free is not None:
+            # in gross slip Qy turns with the direction of the slip increment, which the
+            # shift across the motion sets on the scale of the motion itself: a nearly
+            # unloaded contact's gross-slip shift would cap the search far below it
+            max_step = max(max_step, float(np.linalg.norm(shift0)))
         # the resultant's scale: |Q|, or a small share of the friction's when Q nearly
         # vanishes on a load path; under mixed control the friction's itself, since the
         # imposed component's resultant is only as accurate as the solves (module doc of

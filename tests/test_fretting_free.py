@@ -75,3 +75,22 @@ def test_the_fem_declines_only_the_oblique_free_reading():
         why = fem_reference.supports(case.with_changes(
             friction=replace(case.friction, beta=beta)))
         assert (why is not None) == declined and (not declined or "transverse" in why)
+
+
+@pytest.mark.parametrize("approach", [1e-12, 1e-6])
+def test_a_nearly_unloaded_contact_slides_with_no_transverse_load(approach):
+    """A contact worn almost away (one cell, P of nN to mN) in gross slip: the search
+    across the motion must still reach Qy = 0 (the shift it needs is set by the slip's
+    direction, on the scale of the motion, not by the contact's tiny gross-slip shift),
+    and the one slipping cell carries exactly P / ||e_x||_mu along x."""
+    from halfspace.problem import contact_solver, profile
+
+    case = load_case("fretting_orthotropic", quick=True)[0]
+    case = case.with_changes(friction=replace(case.friction, beta=45.0))
+    solver, h = contact_solver(case), profile(case)
+    start = solver.solve(h, approach=approach)
+    sol = solver.solve(h, approach=approach, shift=(1e-3, 0.0), free=(0.0, 1.0),
+                       prev=start.state)
+    along_x = float(mu_norm(np.array(1.0), np.array(0.0), case.friction))
+    assert abs(sol.Qy) <= 1e-6 * sol.P
+    assert sol.Qx == pytest.approx(-sol.P / along_x, rel=1e-6)
