@@ -29,7 +29,7 @@ CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 
 @pytest.fixture(scope="module")
 def quick(tmp_path_factory):
-    """One quick article run through ic and the closed forms (about 2.5 minutes)."""
+    """One quick article run through ic and the closed forms (its time: benchmarks/README.md)."""
     out = tmp_path_factory.mktemp("article") / "res"
     code = main(["article", "--quick", "--solver", "ic,analytic", "--no-progress",
                  "--out", str(out)])
