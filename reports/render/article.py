@@ -6,6 +6,7 @@ Only files this command writes are ever replaced."""
 
 from __future__ import annotations
 
+import textwrap
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -25,17 +26,21 @@ TITLE = "contact-vv: does the article hold?"
 COLOURS = {"holds": "pass", "does not hold": "fail"}
 #: a series of at most this many points is drawn with its points marked
 FEW = 12
+#: a panel title wraps at this many characters (panels stand side by side)
+TITLE_WIDTH = 45
 
 
 def figure(panels: tuple[Panel, ...], title: str) -> bytes | None:
     """The panels side by side, one line (or markers) per series."""
     if not panels:
         return None
-    fig, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels), 3.6), squeeze=False)
+    fig, axes = plt.subplots(1, len(panels), figsize=(4.6 * len(panels), 3.6), squeeze=False,
+                             layout="constrained")
     for ax, panel in zip(axes[0], panels, strict=True):
         for label, (x, y) in panel.series.items():  # a few outputs: their points shown
             ax.plot(x, y, "o-" if panel.markers or len(x) <= FEW else "-", ms=4, label=label)
-        ax.set(title=panel.title, xlabel=panel.xlabel, ylabel=panel.ylabel)
+        ax.set(xlabel=panel.xlabel, ylabel=panel.ylabel)
+        ax.set_title(textwrap.fill(panel.title, TITLE_WIDTH), fontsize=9)
         ax.grid(alpha=0.3)
         if panel.series:
             ax.legend(fontsize=7)
