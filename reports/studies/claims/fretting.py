@@ -135,7 +135,7 @@ def gross_slip_pressure(art: Article, src: str = SRC) -> Finding:
     lost = _load_lost(art, src, param)
     ok = (falls and grows and p[-1] + up[-1] < p[0] and a[-1] - ua[-1] > a[0]
           and lost > cyc[-1])
-    measured = (f"ic, β = 30°, from the unworn contact (Hertz at the held approach) over "
+    measured = (f"ic, β = 30°, from the unworn contact (Hertz at the held approach or load) over "
                 f"cycles {', '.join(f'{c:g}' for c in cyc)}: p_max/p0 "
                 f"{', '.join(fmt(v / p0) for v in p)}, contact area/πa0² "
                 f"{', '.join(fmt(v / a[0]) for v in a)}"
