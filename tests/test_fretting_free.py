@@ -11,6 +11,8 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from cases.loader import CASES_DIR, load_case
 from halfspace import solve
@@ -19,6 +21,7 @@ from halfspace.friction import mu_norm
 ONE_CYCLE = {"fretting.cycles": 1000, "fretting.jump": 500.0,
              "fretting.output_cycles": [1000]}
 HELD_LOAD = str(CASES_DIR / "examples" / "fretting_orthotropic_load.toml")
+HELD_LOAD_FREE = str(CASES_DIR / "examples" / "fretting_orthotropic_load_free.toml")
 
 
 def _run(beta: float, transverse: str, name: str = "fretting_orthotropic"):
@@ -94,3 +97,22 @@ def test_a_nearly_unloaded_contact_slides_with_no_transverse_load(approach):
     along_x = float(mu_norm(np.array(1.0), np.array(0.0), case.friction))
     assert abs(sol.Qy) <= 1e-6 * sol.P
     assert sol.Qx == pytest.approx(-sol.P / along_x, rel=1e-6)
+
+
+@settings(max_examples=8, deadline=None, derandomize=True)
+@given(mu1=st.floats(0.05, 0.6), ratio=st.floats(1.0, 6.0), beta=st.floats(0.0, 90.0),
+       amplitude=st.floats(5e-4, 6e-3))
+def test_free_motion_under_a_held_load_on_generated_cases(mu1, ratio, beta, amplitude):
+    """Any friction ellipse, angle and amplitude, the load held (P fixed, so the
+    ellipse's capacity along x is fixed): no transverse load at any step, and the load
+    along x never above P / ||e_x||_mu."""
+    case = load_case(HELD_LOAD_FREE, quick=True, overrides={
+        **ONE_CYCLE, "fretting.amplitude": amplitude})[0]
+    case = case.with_changes(friction=replace(case.friction, mu1=mu1,
+                                              mu2=min(mu1 * ratio, 1.0), beta=beta))
+    run = solve(case)
+    P = case.load.P
+    loops = run.tables["loops"]
+    along_x = float(mu_norm(np.array(1.0), np.array(0.0), case.friction))
+    assert np.abs(np.asarray(loops["Qy"])).max() <= 1e-6 * P
+    assert np.abs(np.asarray(loops["Qx"])).max() <= P / along_x * (1 + 1e-6)
