@@ -45,13 +45,13 @@ CLAIMS = (
           "yz-plane stresses lose their symmetry", "13, 20", pin.oblique_traction),
     Claim(10, "fretting (μ1 = 0.1, μ2 = 0.65): β = 0 gross slip, the wear widens the contact; "
           "β = 90 partial slip with a crown-shaped wear around an unworn stick zone",
-          "15, 16", fretting.under_readings(fretting.regimes)),
+          "15, 16", fretting.under_readings(fretting.regimes, note=fretting.AXES_NOTE)),
     Claim(11, "fretting, gross slip (β = 30): the pressure falls while the contact grows",
           "17a", fretting.under_readings(fretting.gross_slip_pressure, fretting.READINGS)),
     Claim(12, "fretting, partial slip (β = 90): the pressure turns towards a nearly uniform "
           "distribution over the stick zone, with a maximum more than twice the first "
           "cycles'", "17b",
-          fretting.under_readings(fretting.partial_slip_pressure)),
+          fretting.under_readings(fretting.partial_slip_pressure, note=fretting.AXES_NOTE)),
     Claim(13, "the regime turns from gross to partial slip at β ≈ 67°, where σ_VM,max at "
           "10⁵ cycles is largest", "18", fretting.regime_change),
 )

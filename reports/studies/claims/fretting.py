@@ -244,8 +244,14 @@ def _grows(art: Article, src: str, param: str, step: int) -> bool:
     return bool(r["f1"] > r["f2"] > r["f3"])
 
 
+#: why claims at β = 0 and 90° need only the two normal controls
+AXES_NOTE = ("the transverse motion held or free is the same problem at β = 0 and 90° (the "
+             "friction and wear axes lie along the motion)")
+
+
 def under_readings(judge: Callable[[Article, str], Finding],
-                   readings: dict[str, str] = CONTROLS) -> Callable[[Article], Finding]:
+                   readings: dict[str, str] = CONTROLS, note: str = ""
+                   ) -> Callable[[Article], Finding]:
     """A claim judged under each reading of the set-up the article leaves open (the held
     approach and the held load; with ``READINGS`` also the transverse motion free): it
     holds if it holds under one, and says under which; it does not hold if it holds under
@@ -261,9 +267,8 @@ def under_readings(judge: Callable[[Article, str], Finding],
         holds = [c for c, f in found.items() if f.verdict == HOLDS]
         verdict = HOLDS if holds else FAILS if all(v == FAILS for v in verdicts) else UNDECIDED
         why = "; ".join(f"{c}: {f.verdict} ({f.why})" for c, f in found.items())
-        if readings is CONTROLS:
-            why += ("; the transverse motion held or free is the same problem at β = 0 and "
-                    "90° (the friction and wear axes lie along the motion)")
+        if note:
+            why += "; " + note
         if holds:
             which = ("every reading" if len(holds) == len(found) > 1 else
                      "the " + "; the ".join(holds))
