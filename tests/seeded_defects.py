@@ -4,7 +4,8 @@ must catch each (``tests/test_seeded_defects.py``; the list and the catch rate a
 
 Each defect replaces ``old`` by ``new`` in ``path`` (every occurrence; ``count`` says how
 many there are) in a scratch copy of the packages.  ``cases`` are the bundled cases whose
-quick gate (``--solver ic,analytic``, or with the FEM where ``fem``) must then fail;
+quick gate (``--solver ic,analytic``, or with the FEM where ``fem``) must then fail — at
+the one sweep point ``sweep`` (``contact-vv sweep CASE --param SWEEP``) where it is set;
 ``selftest`` defects live in the comparisons themselves, where the gate on a correct
 solver cannot fail, and the gate's self-test (``tests/test_gate_selftest.py``) must fail
 instead.
@@ -25,6 +26,7 @@ class Defect:
     count: int = 1
     fem: bool = False
     selftest: bool = False
+    sweep: str = ""
 
 
 DEFECTS = [
@@ -64,6 +66,14 @@ DEFECTS = [
            "return sol, J * sn_a * sol.state.p_n, J * sn_b * sol.state.p_n",
            "return sol, (J - 1) * sn_a * sol.state.p_n, (J - 1) * sn_b * sol.state.p_n",
            ("fretting_isotropic",)),
+    # the worn orthotropic fretting contact: no closed form, every relation maps these
+    # onto themselves; the FEM's worn gross-slip point sees them (issue 34)
+    Defect("fretting: body b worn with body a's slip norm",
+           "halfspace/wear.py", "J * sn_b * sol.state.p_n", "J * sn_a * sol.state.p_n",
+           ("fretting_orthotropic",), fem=True, sweep="friction.beta=0"),
+    Defect("fretting corrector: its wear compliance without the cycle jump",
+           "halfspace/wear.py", "wear_rate=J * (sn_a + sn_b)", "wear_rate=sn_a + sn_b",
+           ("fretting_orthotropic",), fem=True, sweep="friction.beta=0"),
     Defect("fretting path 10 % short of the amplitude",
            "halfspace/wear.py",
            "return Fretting(amplitude=amplitude, steps_per_cycle=steps_per_cycle)",

@@ -14,7 +14,8 @@ the baselines explicitly with
         pin_on_disk_orthotropic dissimilar spence --quick --out results
     contact-vv gate --out results --update-baseline tests/baselines
 
-The FEM runs fretting only on request (tests/test_fem_fretting.py checks its first cycle).
+The FEM runs fretting only on request (tests/test_fem_fretting.py checks its first cycle,
+tests/test_fem_fretting_worn.py the worn orthotropic contact in gross slip).
 """
 
 from __future__ import annotations

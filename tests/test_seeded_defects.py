@@ -2,10 +2,12 @@
 
 Each defect is applied to a scratch copy of the five packages and the quick gate of its
 cases runs there in a fresh process (``contact-vv run CASES --quick --solver
-ic,analytic``, then ``contact-vv gate``), which must fail — a failed metric or a solver
-that no longer converges; a defect in the comparisons themselves must fail the gate's
-self-test instead.  The defects outside ``fem_reference`` are caught without the FEM and
-run in CI; the FEM's run in the full tier.
+ic,analytic``, or ``contact-vv sweep CASE --param SWEEP`` at one point, then ``contact-vv
+gate``), which must fail — a failed metric or a solver that no longer converges; a defect
+in the comparisons themselves must fail the gate's self-test instead.  The defects
+caught without the FEM run in CI; those that need the FEM (its own, and the half-space
+solver's on the worn orthotropic fretting contact, which only the FEM compares; CI runs
+that comparison itself, tests/test_fem_fretting_worn.py) run in the full tier.
 """
 
 from __future__ import annotations
@@ -54,7 +56,12 @@ def caught(defect: Defect, tmp: Path) -> str:
         return f"gate self-test: {failed[0]}" if done.returncode and failed else ""
     out = tmp / "results"
     solvers = "ic,fem,analytic" if defect.fem else "ic,analytic"
-    run = _run(["-m", "reports", "run", *defect.cases, "--quick", "--solver", solvers,
+    if defect.sweep:
+        (case,) = defect.cases
+        command = ["sweep", case, "--param", defect.sweep, "--workers", "0"]
+    else:
+        command = ["run", *defect.cases]
+    run = _run(["-m", "reports", *command, "--quick", "--solver", solvers,
                 "--no-progress", "--out", str(out)], src)
     gate = _run(["-m", "reports", "gate", "--out", str(out)], src)
     if gate.returncode == 0:

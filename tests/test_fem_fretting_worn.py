@@ -1,0 +1,103 @@
+"""The worn orthotropic fretting contact through both solvers, in CI (issue 34).
+
+Without this module the worn fretting contact is checked in CI by one solver only: the
+quick gates run ``fretting_orthotropic`` through the half-space solver and its
+metamorphic relations, and the FEM runs only the first cycle of ``fretting_isotropic``
+(tests/test_fem_fretting.py), whose two bodies wear alike.  A defect of the worn path that
+every relation maps onto itself — body b worn with body a's coefficients, a cycle jump's
+wear that is not what it should be — then passes unseen (tests/seeded_defects.py, the
+defects whose cases name ``fretting_orthotropic``).
+
+Here the FEM runs two gross-slip points of the bundled case (friction (0.1, 0.65), both
+bodies wearing with their own orthotropic coefficients, the held approach):
+
+- β = 0, the quick point itself: 2000 cycles at J = 500, four simulated cycles, on the
+  half block;
+- β = 60°, an oblique angle near the article's regime change, on the full block (no
+  symmetry), cut to 500 cycles (one simulated cycle after the loading) for CI's time.
+
+Every ic-fem row of every output cycle —
+the wear fields of both bodies, w_max, the wear volume, the pressure, the stress planes,
+the loops and their energy — must be gated and pass at the default tolerances
+(``contact-vv gate`` exits 0).  Partial slip (β = 90°) is not here: there the two
+solvers part in the worn stick zone (docs/fem-notes.md, part 5).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from cases.loader import load_case
+from reports.cli import main
+from reports.registry.tolerances import tolerance
+from reports.store import layout
+
+pytestmark = pytest.mark.fem
+
+#: the worn-contact quantities every output cycle must gate (ic-fem)
+WORN = ("wear_a", "wear_b", "w_max", "wear_volume", "p_n", "p_max", "vm_xz", "loop_q",
+        "energy")
+
+
+#: the points: -> (extra arguments of ``contact-vv sweep``, output cycles, simulated cycles)
+POINTS = {
+    "beta=0": ((), [1000.0, 2000.0], 4),
+    "beta=60": (("--set", "fretting.cycles=500", "--set", "fretting.output_cycles=[500]"),
+                [500.0], 1),
+}
+
+
+@pytest.fixture(scope="module", params=sorted(POINTS))
+def worn(request, tmp_path_factory) -> tuple[str, Path]:
+    out = tmp_path_factory.mktemp("worn") / "results"
+    assert main(["sweep", "fretting_orthotropic", "--quick", "--solver", "ic,fem",
+                 "--param", f"friction.{request.param}", *POINTS[request.param][0],
+                 "--workers", "0", "--no-progress", "--out", str(out)]) == 0
+    return request.param, out
+
+
+def case_dir(out: Path) -> Path:
+    (found,) = [p for p in out.iterdir() if (p / layout.MANIFEST).is_file()]
+    return found
+
+
+def test_the_gate_passes(worn, capsys):
+    code = main(["gate", "--out", str(worn[1])])
+    out = capsys.readouterr().out
+    assert code == 0, out
+
+
+def test_every_output_cycle_gates_the_worn_contact(worn):
+    """The pass means something: every output cycle carries gated ic-fem rows of every
+    worn-contact quantity, at the default tolerances."""
+    point, out = worn
+    m = pd.read_csv(case_dir(out) / layout.METRICS)
+    m = m[m["pair"] == "ic-fem"]
+    assert sorted(m["cycle"].unique()) == POINTS[point][1]
+    for cycle, rows in m.groupby("cycle"):
+        gated = rows[rows["status"] == "gated"]
+        assert set(WORN) <= set(gated["quantity"]), (cycle, set(WORN) - set(gated["quantity"]))
+        assert gated["tolerance_key"].str.startswith("default").all()
+        assert gated["passed"].all()
+
+
+def test_the_point_wears_in_gross_slip_in_both_solvers(worn):
+    """What the gate covers: every simulated cycle in gross slip, in both solvers (the
+    cycles table each writes), the worn depth growing from one simulated cycle to the
+    next, and the two solvers' depths alike."""
+    point, out = worn
+    depth = {}
+    for solver in ("ic", "fem"):
+        cycles = pd.read_csv(case_dir(out) / "fields" / solver / point / "cycles.csv")
+        assert len(cycles) == POINTS[point][2], solver
+        assert (cycles["gross_slip"] == 1.0).all(), solver
+        assert (cycles["w_max"].diff().dropna() > 0).all(), solver
+        depth[solver] = cycles["w_max"].to_numpy()
+    # each simulated cycle's worn depth within the pair's w_max tolerance, the one the
+    # output cycles are gated with (the two solvers' wear budgets, reports/registry)
+    case = load_case("fretting_orthotropic", quick=True)[0]
+    limit, _ = tolerance(case, "ic-fem", "w_max", "rel")
+    assert depth["fem"] == pytest.approx(depth["ic"], rel=limit)
