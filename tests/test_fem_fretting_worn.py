@@ -29,6 +29,8 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from cases.loader import load_case
 from reports.cli import main
@@ -101,3 +103,45 @@ def test_the_point_wears_in_gross_slip_in_both_solvers(worn):
     case = load_case("fretting_orthotropic", quick=True)[0]
     limit, _ = tolerance(case, "ic-fem", "w_max", "rel")
     assert depth["fem"] == pytest.approx(depth["ic"], rel=limit)
+
+
+@pytest.mark.full
+@settings(max_examples=3, deadline=None, derandomize=True)
+@given(mu1=st.floats(0.08, 0.3), ratio=st.floats(1.0, 6.0), beta=st.floats(0.0, 90.0),
+       amplitude=st.floats(3e-3, 6e-3), held=st.sampled_from(["approach", "load"]))
+def test_generated_worn_gross_slip_cases_pass(mu1, ratio, beta, amplitude, held):
+    """Cases the suite has not seen — any friction ellipse, angle and amplitude, the
+    approach or the load held — worn for 500 cycles (one simulated cycle of J = 500):
+    where both solvers slide through the whole cycle, every gated ic-fem row passes at
+    the default tolerances (a right pair of solvers raises no false alarm)."""
+    from dataclasses import replace
+
+    import fem_reference
+    import halfspace
+    from reports.compare.point import compare_point
+
+    name = ("fretting_orthotropic" if held == "approach"
+            else Path(__file__).resolve().parents[1] / "cases" / "examples"
+            / "fretting_orthotropic_load.toml")
+    case = load_case(name, quick=True, overrides={
+        "fretting.amplitude": amplitude, "fretting.cycles": 500,
+        "fretting.output_cycles": [500]})[0]
+    case = case.with_changes(friction=replace(case.friction, mu1=mu1,
+                                              mu2=min(mu1 * ratio, 1.0), beta=beta))
+    ic = halfspace.solve(case)
+    assume((ic.tables["cycles"]["gross_slip"] == 1.0).all())
+    fem = fem_reference.solve(case, vtu=False)
+    assert (fem.tables["cycles"]["gross_slip"] == 1.0).all()
+    frame = compare_point(case, {"ic": ic, "fem": fem})
+    gated = frame[frame["status"] == "gated"]
+    # every worn-contact quantity compared; the wear gated (a slip zone as wide as the
+    # contact), the loop and its energy where the contact radius spans the cells their
+    # budgets need (reports.registry.resolution: the held load's 3 mm grid may not)
+    assert set(WORN) <= set(frame["quantity"])
+    assert {"wear_a", "wear_b", "w_max", "wear_volume"} <= set(gated["quantity"])
+    worst = gated.loc[(gated["value"] / gated["tolerance"]).idxmax()]
+    print(f"\nmu = ({mu1:.3f}, {case.friction.mu2:.3f}), beta = {beta:.1f}, amplitude "
+          f"{amplitude * 1e3:.2f} um, {held} held: {len(gated)} gated rows, the closest "
+          f"{worst['quantity']} {worst['metric']} {worst['value']:.3g} of {worst['tolerance']:g}")
+    failed = gated[~gated["passed"]]
+    assert failed.empty, failed[["quantity", "metric", "value", "tolerance"]].to_string()
