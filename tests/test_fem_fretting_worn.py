@@ -3,10 +3,11 @@
 Without this module the worn fretting contact is checked in CI by one solver only: the
 quick gates run ``fretting_orthotropic`` through the half-space solver and its
 metamorphic relations, and the FEM runs only the first cycle of ``fretting_isotropic``
-(tests/test_fem_fretting.py), whose two bodies wear alike.  A defect of the worn path that
-every relation maps onto itself — body b worn with body a's coefficients, a cycle jump's
-wear that is not what it should be — then passes unseen (tests/seeded_defects.py, the
-defects whose cases name ``fretting_orthotropic``).
+(tests/test_fem_fretting.py), whose two bodies wear alike.  A defect of the worn path
+that the relations map onto themselves — the corrector's wear compliance without the
+cycle jump, body b worn with body a's slip norm — then passes, or is seen by chance in a
+quantity the cycle jump does not converge (tests/seeded_defects.py, the defects whose
+cases name ``fretting_orthotropic``; benchmarks/README.md, "Escapes").
 
 Here the FEM runs two gross-slip points of the bundled case (friction (0.1, 0.65), both
 bodies wearing with their own orthotropic coefficients, the held approach):
@@ -16,11 +17,10 @@ bodies wearing with their own orthotropic coefficients, the held approach):
 - β = 60°, an oblique angle near the article's regime change, on the full block (no
   symmetry), cut to 500 cycles (one simulated cycle after the loading) for CI's time.
 
-Every ic-fem row of every output cycle —
-the wear fields of both bodies, w_max, the wear volume, the pressure, the stress planes,
-the loops and their energy — must be gated and pass at the default tolerances
-(``contact-vv gate`` exits 0).  Partial slip (β = 90°) is not here: there the two
-solvers part in the worn stick zone (docs/fem-notes.md, part 5).
+Every ic-fem row of every output cycle — the wear fields of both bodies, w_max, the wear
+volume, the pressure, the stress planes, the loops and their energy — must be gated and
+pass at the default tolerances (``contact-vv gate`` exits 0).  Partial slip (β = 90°) is
+not here: there the two solvers part in the worn stick zone (docs/fem-notes.md, part 5).
 """
 
 from __future__ import annotations
