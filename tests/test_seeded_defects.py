@@ -56,9 +56,9 @@ def caught(defect: Defect, tmp: Path) -> str:
         return f"gate self-test: {failed[0]}" if done.returncode and failed else ""
     out = tmp / "results"
     solvers = "ic,fem,analytic" if defect.fem else "ic,analytic"
-    if defect.sweep:
+    if defect.sweep:  # one point, whose only reference is the FEM: a failed ic-fem row
         (case,) = defect.cases
-        command = ["sweep", case, "--param", defect.sweep, "--workers", "0"]
+        command, solvers = ["sweep", case, "--param", defect.sweep, "--workers", "0"], "ic,fem"
     else:
         command = ["run", *defect.cases]
     run = _run(["-m", "reports", *command, "--quick", "--solver", solvers,
@@ -68,6 +68,8 @@ def caught(defect: Defect, tmp: Path) -> str:
         return ""
     lines = [ln for ln in (gate.stdout + gate.stderr + run.stderr).splitlines()
              if "FAIL " in ln or "INCOMPLETE" in ln or "did not converge" in ln]
+    if defect.sweep:
+        return next((ln for ln in lines if "FAIL " in ln and " ic-fem " in ln), "")
     return lines[0] if lines else gate.stderr.strip()[:200]
 
 
