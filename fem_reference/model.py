@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
@@ -168,12 +169,17 @@ class FemModel:
         Rz = np.where(self.surface.dof_comp[self.cidx] == 2, -1.0, 1.0)
         Crel = (Rz[:, None] * C1[case.a.nu] * Rz[None, :]) / case.a.E + C1[case.b.nu] / case.b.E
         self.Crel = Crel
-        cho = la.cho_factor(Crel)
-        self.Krel = la.cho_solve(cho, np.eye(Crel.shape[0]))
-        self.Krel = 0.5 * (self.Krel + self.Krel.T)
         self.law = self._law()
         self.timings = {**core.timings, "reused": core.uses > 1,
                         "setup_s": time.perf_counter() - t0}
+
+    @cached_property
+    def Krel(self) -> np.ndarray:
+        """The condensed relative stiffness ``C_rel⁻¹``, formed on first use: only the
+        augmented solve (``fem.contact = "augmented"``) needs it; the semi-smooth solve
+        works on the compliance."""
+        K = la.cho_solve(la.cho_factor(self.Crel), np.eye(self.Crel.shape[0]))
+        return 0.5 * (K + K.T)
 
     # ------------------------------------------------------------------ contact law
 
