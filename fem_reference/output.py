@@ -51,7 +51,7 @@ from .contact_law import Evaluation
 from .contact_zone import ContactZone, closing_measure, contact_zone
 from .model import BodyDisplacement
 from .run import OutputState, Run
-from .stress_planes import AXIS_FIT_WINDOW, axis_peak, stress_planes
+from .stress_planes import AXIS_FIT_WINDOW, SurfaceStress, axis_peak, stress_planes
 from .vtu import fields_mesh
 
 Table = dict[str, np.ndarray]
@@ -93,7 +93,8 @@ def step_output(run: Run, out: OutputState, *, t0: float, vtu: bool = True) -> S
     surface = surface_fields(run, out, zone, tractions, probe_gap(run, ua, ub))
     tables = line_tables(run, out, zone, tractions)
     u_body, mat = (ua, case.a) if case.stress.body == "a" else (ub, case.b)
-    planes, axis = stress_planes(m, run.locator, u_body, mat.nu, mat.E)
+    planes, axis = stress_planes(m, run.locator, u_body, mat.nu, mat.E,
+                                 surface_stress(run, ev, case.stress.body))
     tables[f"axis/{out.step}"] = axis
     scalars = step_scalars(run, out, zone, tractions, planes, axis)
     scalars.update(_body_scalars(run, u_body, mat, t0, scalars["P"],
@@ -139,6 +140,25 @@ def recover_tractions(run: Run, ev: Evaluation) -> Tractions:
     sy = 1.0 if run.model.sym.companion else sampling.sy
     return Tractions(pn_nodes=ev.pn, pn=Nsub @ ev.pn, px=sampling.sx * (Nsub @ ev.t[:, 0]),
                      py=sy * (Nsub @ ev.t[:, 1]))
+
+
+def surface_stress(run: Run, ev: Evaluation, body: str) -> SurfaceStress:
+    """The surface stresses σ_zz, σ_xz, σ_yz of the reported body at global points: the
+    tractions it carries, from the nodal tractions of ``ev`` (on body a) interpolated
+    like the surface fields.  In the reported frame (depth z into the body) σ_zz = −p_n
+    on either body; body a carries (p_x, p_y), so σ_xz, σ_yz = −(p_x, p_y) there, and
+    body b carries the opposite.  Zero off the contact zone (a free surface)."""
+    model = run.model
+    sign = 1.0 if body == "b" else -1.0
+
+    def at(xy: np.ndarray) -> dict[str, np.ndarray]:
+        mapped, sx, sy = model.sym.map(xy)
+        N, _ = model.surface.sub_interpolation(mapped)
+        sy = 1.0 if model.sym.companion else sy  # the y traction is even there (.model)
+        return {"szz": -np.maximum(N @ ev.pn, 0.0), "sxz": sign * sx * (N @ ev.t[:, 0]),
+                "syz": sign * sy * (N @ ev.t[:, 1])}
+
+    return at
 
 
 def surface_fields(run: Run, out: OutputState, zone: ContactZone, tractions: Tractions,

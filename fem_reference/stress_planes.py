@@ -5,9 +5,18 @@ in the reported frame (x, y, depth z) on the case's planes: ``xz`` at y = y0 ove
 grid x, ``yz`` at x = x0 over the grid y ((x0, y0) = ``case.plane_centre``), both at the
 depths ``stress.z``; and on the load axis (x0, y0) at 8x the plane resolution in depth,
 whose σ_VM maximum :func:`axis_peak` locates.
+
+On the surface itself (depth 0) the components σ_zz, σ_xz, σ_yz are the boundary
+condition, the tractions the body carries, and are taken from the recovered nodal
+tractions (``surface``) rather than from the element gradients: the P2 stresses of the
+surface elements carry their largest error there, most under a worn profile's steep
+traction, where the nodal tractions of the contact solve are the FEM's most accurate
+surface quantity (``docs/fem-notes.md``).  σ_xx, σ_yy, σ_xy stay the elements'.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 import numpy as np
 
@@ -18,12 +27,17 @@ from .stresses import COMPONENTS, PointLocator, sample_stresses
 
 AXIS_FIT_WINDOW = 0.3  # half-width of the axis σ_VM fit window, in contact semi-widths
 AXIS_REFINEMENT = 8  # depth samples on the axis per plane depth interval
+#: the surface tractions' stresses of the reported body at global (n, 2) points:
+#: {"szz", "sxz", "syz"} in the reported frame
+SurfaceStress = Callable[[np.ndarray], dict[str, np.ndarray]]
 
 
 def stress_at(model: FemModel, locator: PointLocator, u: BodyDisplacement, nu: float,
-              E: float, xyz: np.ndarray) -> dict[str, np.ndarray]:
+              E: float, xyz: np.ndarray, surface: SurfaceStress | None = None
+              ) -> dict[str, np.ndarray]:
     """Stress components and σ_VM in the reported frame (x, y, depth) at global (x, y,
-    depth) ``xyz`` (n, 3), of the body with block-frame displacement ``u`` and (ν, E).
+    depth) ``xyz`` (n, 3), of the body with block-frame displacement ``u`` and (ν, E);
+    at depth 0, σ_zz, σ_xz, σ_yz from ``surface`` where given (module doc).
 
     The mirror image of the symmetric solution keeps σ_xx, σ_yy, σ_zz, σ_xz and changes
     the sign of σ_xy, σ_yz (sign 0 on the mirror plane: they vanish there); the
@@ -42,14 +56,21 @@ def stress_at(model: FemModel, locator: PointLocator, u: BodyDisplacement, nu: f
         sig["sxy"] = sig["sxy"] + anti["sxy"] * sx
         sig["sxz"] = sig["sxz"] - anti["sxz"] * sx * sy
         sig["syz"] = sig["syz"] - anti["syz"]
+    top = xyz[:, 2] == 0.0
+    if surface is not None and top.any():
+        for c, v in surface(xyz[top, :2]).items():
+            sig[c] = sig[c].copy()
+            sig[c][top] = v
     sig["vm"] = von_mises(*(sig[c] for c in COMPONENTS))
     return sig
 
 
 def stress_planes(model: FemModel, locator: PointLocator, u: BodyDisplacement, nu: float,
-                  E: float) -> tuple[dict[str, Plane], dict[str, np.ndarray]]:
+                  E: float, surface: SurfaceStress | None = None
+                  ) -> tuple[dict[str, Plane], dict[str, np.ndarray]]:
     """(planes ``{"xz", "yz"}``, axis table ``{"z", components, "vm"}``) of the body with
-    displacement ``u`` and (ν, E)."""
+    displacement ``u`` and (ν, E); on the surface with the tractions' components of
+    ``surface`` (module doc)."""
     case = model.case
     st = case.stress
     x0, y0 = case.plane_centre
@@ -61,12 +82,12 @@ def stress_planes(model: FemModel, locator: PointLocator, u: BodyDisplacement, n
             xyz = np.column_stack([S.ravel(), np.full(S.size, y0), Z.ravel()])
         else:
             xyz = np.column_stack([np.full(S.size, x0), S.ravel(), Z.ravel()])
-        sig = stress_at(model, locator, u, nu, E, xyz)
+        sig = stress_at(model, locator, u, nu, E, xyz, surface)
         planes[name] = Plane(s=s.copy(), z=z.copy(),
                              fields={k: v.reshape(S.shape) for k, v in sig.items()})
     zf = np.linspace(0.0, st.depth, AXIS_REFINEMENT * (st.nz - 1) + 1)
     xyz = np.column_stack([np.full(zf.size, x0), np.full(zf.size, y0), zf])
-    axis = {"z": zf, **stress_at(model, locator, u, nu, E, xyz)}
+    axis = {"z": zf, **stress_at(model, locator, u, nu, E, xyz, surface)}
     return planes, axis
 
 

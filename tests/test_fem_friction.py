@@ -16,7 +16,7 @@ import math
 
 import numpy as np
 import pytest
-from vv_testing import assert_converges
+from vv_testing import assert_converges, assert_surface_row_is_the_traction
 
 from cases.loader import load_case
 from cases.model import FemSettings, Friction
@@ -112,6 +112,19 @@ def test_sliding_high_friction_maximum_at_surface():
     print(f"\nsliding: mu=0.15 vm_max/p0={low['vm_max'] / p0:.4f} at "
           f"({low['vm_max_x'] / a0:.3f}, {low['vm_max_z'] / a0:.3f}) a0; mu=0.5 "
           f"{sc['vm_max'] / p0:.4f} at ({sc['vm_max_x'] / a0:.3f}, {sc['vm_max_z'] / a0:.3f}) a0")
+
+
+def test_the_surface_row_carries_the_tractions():
+    """Body b, sliding at μ = 0.5 (the σ_VM maximum on the surface): the planes' surface
+    row is the boundary condition, the recovered tractions, not the surface elements'
+    gradients (fem_reference.stress_planes); the half-space solver's kernels give its
+    own surface row the same convention."""
+    import halfspace
+
+    case, res = sliding(0.5)
+    assert case.stress.body == "b"
+    assert_surface_row_is_the_traction(case, res)
+    assert_surface_row_is_the_traction(case, halfspace.solve(case))
 
 
 @pytest.mark.full

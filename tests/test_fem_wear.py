@@ -17,7 +17,7 @@ import math
 
 import numpy as np
 import pytest
-from vv_testing import hertz_solution
+from vv_testing import assert_surface_row_is_the_traction, hertz_solution
 
 from cases.loader import load_case
 from cases.model import FemSettings
@@ -142,6 +142,18 @@ def test_pin_on_disk_with_friction_wears_alike():
         assert s5.scalars["Qx"] == pytest.approx(-0.5 * c5.load.P, rel=1e-9)
         assert s5.scalars["wear_volume"] == pytest.approx(s0.scalars["wear_volume"], rel=1e-6)
         assert s5.scalars["a_x"] == pytest.approx(s0.scalars["a_x"], rel=0.03)
+
+
+def test_the_surface_row_carries_the_tractions_of_body_a():
+    """The worn pin reports body a (σ_xz, σ_yz = −p_t there): every output step's surface
+    row is its tractions, as the half-space solver's is (the companion of
+    tests/test_fem_friction.py's body b)."""
+    import halfspace
+
+    case, res = pin_on_disk(0.5)
+    assert case.stress.body == "a" and len(res.steps) > 1
+    assert_surface_row_is_the_traction(case, res)
+    assert_surface_row_is_the_traction(case, halfspace.solve(case))
 
 
 def test_worn_pin_pressure_against_the_half_space_solver():

@@ -38,6 +38,8 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numpy as np
+
 from analytic.hertz import Hertz, hertz, hertz_from_approach
 from cases.loader import BUNDLED, load_case
 from cases.model import Case
@@ -195,3 +197,27 @@ def assert_converges(h: Sequence[float], errors: Sequence[float] | None = None, 
             fails.append(f"change |f2/f1 - 1| = {conv.change:.4g} not < {max_change:g}")
     assert not fails, f"{' and '.join(fails)}: {conv}"
     return conv
+
+
+def assert_surface_row_is_the_traction(case: Case, result) -> None:
+    """The σ_VM planes' surface row (depth 0) carries the boundary condition: in the
+    reported frame σ_zz = −p_n, and (σ_xz, σ_yz) = (p_x, p_y) on body b, the opposite on
+    body a (the tractions of the common format are body a's; body b carries −p_t).
+    Checked where the plane's line runs through the surface grid (the planes of the
+    bundled cases do), at the points in contact, on every output step."""
+    sign = 1.0 if case.stress.body == "b" else -1.0
+    x0, y0 = case.plane_centre
+    for step in result.steps:
+        for name, plane in step.planes.items():
+            assert plane.z[0] == 0.0
+            axis, at = (step.y, y0) if name == "xz" else (step.x, x0)
+            k = int(np.argmin(np.abs(axis - at)))
+            assert abs(axis[k] - at) < 1e-12 * max(1.0, abs(at))
+            line = {q: (f[:, k] if name == "xz" else f[k, :]) for q, f in step.surface.items()}
+            on = line["p_n"] > 0.0
+            assert on.sum() >= 3
+            scale = float(np.max(line["p_n"]))
+            for comp, want in (("szz", -line["p_n"]), ("sxz", sign * line["p_x"]),
+                               ("syz", sign * line["p_y"])):
+                np.testing.assert_allclose(plane.fields[comp][on, 0], want[on],
+                                           atol=1e-9 * scale, err_msg=f"{name} {comp}")
