@@ -7,11 +7,13 @@ approach, each with the real cycle at which it was seen (to within the cycle jum
 Runs (quick size, about 20 s in all):
 
 - ``fretting_orthotropic --quick`` (31², 8 steps per cycle, 2000 cycles, J = 500,
-  β ∈ {0, 90}) through ``contact-vv run``.  Along x the friction coefficient is
+  β ∈ {0, 90, 60}) through ``contact-vv run``.  Along x the friction coefficient is
   μ1 = 0.1 at β = 0 and μ2 = 0.65 at β = 90; Mindlin's gross-slip displacement at the
   held approach, δ* = μ (2 - ν) δ_n / (2 (1 - ν)) (docs/cases.md, case 6), is 0.97 µm
   and 6.3 µm against the 4 µm amplitude: gross slip at β = 0 (no stick cell at ±A in
-  any cycle), partial slip at β = 90 (stick cells at ±A in every cycle), no event.
+  any cycle), partial slip at β = 90 (stick cells at ±A in every cycle), no event.  At
+  β = 60 the orthotropic law has no Mindlin closed form; it lies below the quick
+  threshold (80.2°, next point), so the contact slides in every cycle there too.
 - The same file at β = 80.5, just above the quick threshold (80.2° after 2000 cycles,
   reports/README.md): the contact starts in gross slip and, as the worn contact spreads,
   the stick zone appears at ±A.  Measured: stick area 0 at both extremes at cycles 500
@@ -54,7 +56,8 @@ def _events(out: Path, case: str) -> pd.DataFrame:
 
 @pytest.fixture(scope="module")
 def results(tmp_path_factory) -> Path:
-    """The quick sweep (β = 0, 90) and the β = 80.5 point, run and reported in one DIR."""
+    """The quick sweep (β = 0, 90, 60) and the β = 80.5 point, run and reported in one
+    DIR."""
     out = tmp_path_factory.mktemp("events")
     near = out.parent / f"{NEAR}.toml"
     shutil.copyfile(case_path(CASE), near)
@@ -122,7 +125,7 @@ def test_quick_sweep_gross_slip_at_0_partial_slip_at_90(results):
     star = {mu: afr.MindlinDeresiewicz.from_approach(delta_n, case.R, mu, case.a.E, nu, case.b.E,
                                            nu).delta_star for mu in (0.1, 0.65)}
     assert star[0.1] < A < star[0.65]  # Mindlin: gross slip at β = 0, partial at 90
-    for param, gross in (("beta=0", True), ("beta=90", False)):
+    for param, gross in (("beta=0", True), ("beta=90", False), ("beta=60", True)):
         cyc = _table(results, CASE, param, "cycles")
         assert list(cyc["cycle"]) == [500.0, 1000.0, 1500.0, 2000.0]
         stick = cyc[["stick_area_neg", "stick_area_pos"]].to_numpy()
