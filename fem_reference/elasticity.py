@@ -189,6 +189,8 @@ class Factorization:
         self.n = A.shape[0]
         self._A = sp.triu(A, format="csr")
         self._A.sort_indices()
+        self._ia = (self._A.indptr + 1).astype(np.int32)  # PARDISO's 1-based CSR
+        self._ja = (self._A.indices + 1).astype(np.int32)
         s = _pardiso_solver()
         # explicit parameters (iparm[0] = 1); the others are PARDISO's SPD defaults
         s.set_iparm(1, 1)
@@ -251,9 +253,6 @@ class Factorization:
         call = getattr(s, "_mkl_pardiso", None)
         if call is None or not hasattr(s, "pt") or not B.flags.f_contiguous:
             return np.asfortranarray(s.solve(self._A, B))
-        if not hasattr(self, "_ia"):
-            self._ia = (self._A.indptr + 1).astype(np.int32)
-            self._ja = (self._A.indices + 1).astype(np.int32)
         s.set_iparm(12, 0)  # CSR, not transposed
         x = np.zeros_like(B)
         error = ctypes.c_int32(0)

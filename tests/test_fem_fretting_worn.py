@@ -35,6 +35,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from cases.loader import load_case
 from reports.cli import main
 from reports.store.results import CaseResults, scan
 
@@ -48,18 +49,19 @@ WORN = ("wear_a", "wear_b", "w_max", "wear_volume", "p_n", "p_x", "p_max", "vm_x
 WEAR = ("wear_a", "wear_b", "w_max", "wear_volume")
 
 
-#: the points: -> (extra arguments of ``contact-vv sweep``, output cycles, simulated cycles)
-POINTS = {
-    "beta=0": ((), [1000.0, 2000.0], 4),
-    "beta=60": ((), [1000.0, 2000.0], 4),
-}
+#: the points of the quick sweep run here, at the quick settings
+POINTS = ("beta=0", "beta=60")
+#: their output cycles and simulated cycles (cycles / jump), from the case itself
+_FRETTING = load_case("fretting_orthotropic", quick=True)[0].fretting
+OUTPUT_CYCLES = sorted(float(c) for c in _FRETTING.output_cycles)
+SIMULATED = round(_FRETTING.cycles / _FRETTING.jump)
 
 
-@pytest.fixture(scope="module", params=sorted(POINTS))
+@pytest.fixture(scope="module", params=POINTS)
 def worn(request, tmp_path_factory) -> tuple[str, Path]:
     out = tmp_path_factory.mktemp("worn") / "results"
     assert main(["sweep", "fretting_orthotropic", "--quick", "--solver", "ic,fem",
-                 "--param", f"friction.{request.param}", *POINTS[request.param][0],
+                 "--param", f"friction.{request.param}",
                  "--workers", "0", "--no-progress", "--out", str(out)]) == 0
     return request.param, out
 
@@ -81,7 +83,7 @@ def test_every_output_cycle_gates_the_worn_contact(worn):
     point, out = worn
     m = results(out).metrics
     m = m[m["pair"] == "ic-fem"]
-    assert sorted(m["cycle"].unique()) == POINTS[point][1]
+    assert sorted(m["cycle"].unique()) == OUTPUT_CYCLES
     for cycle, rows in m.groupby("cycle"):
         gated = rows[rows["status"] == "gated"]
         assert set(WORN) <= set(gated["quantity"]), (cycle, set(WORN) - set(gated["quantity"]))
@@ -99,7 +101,7 @@ def test_the_point_wears_in_gross_slip_in_both_solvers(worn):
     depth = {}
     for solver in ("ic", "fem"):
         cycles = found.tables(solver, point)["cycles"]
-        assert len(cycles) == POINTS[point][2], solver
+        assert len(cycles) == SIMULATED, solver
         assert (cycles["gross_slip"] == 1.0).all(), solver
         assert (np.diff(cycles["w_max"], prepend=0.0) > 0).all(), solver
         depth[solver] = cycles["w_max"].to_numpy()
