@@ -30,6 +30,12 @@ class KeptFactors:
         self.lu = None
         self.factorisations = 0
         self.krylov = 0
+        self._parts: dict[str, KeptFactors] = {}
+
+    def part(self, key: str) -> KeptFactors:
+        """The kept factors of the diagonal block ``key`` of block-triangular systems,
+        kept across solves like these."""
+        return self._parts.setdefault(key, KeptFactors())
 
     def solve(self, J: np.ndarray, b: np.ndarray, cols: np.ndarray) -> np.ndarray:
         extra = J.shape[0] - cols.size

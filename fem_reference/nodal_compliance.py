@@ -20,13 +20,19 @@ class NodalCompliance:
     G: sp.csr_matrix
     w: np.ndarray
     HW: np.ndarray
+    decoupled: bool = False  # the normal–tangential blocks of H vanish (see build)
     _last: tuple | None = None  # (cols, HW[cols][:, cols]) of the last block
 
     @classmethod
     def build(cls, C: np.ndarray, G: sp.csr_matrix, w: np.ndarray) -> NodalCompliance:
         GC = np.asarray(G @ C)  # (3n, m)
         H = np.asarray(G @ GC.T).T  # G C Gᵀ
-        return cls(C=C, G=G, w=w, HW=H * np.tile(w, 3)[None, :])
+        n = w.size
+        # identical materials (Dundurs' β = 0): the mirrored blocks' normal–tangential
+        # compliances cancel in C_rel to the last bit, so H's coupling blocks are zero
+        decoupled = H.shape[0] == 3 * n and not (H[2 * n:, :2 * n].any()
+                                                 or H[:2 * n, 2 * n:].any())
+        return cls(C=C, G=G, w=w, HW=H * np.tile(w, 3)[None, :], decoupled=decoupled)
 
     def block(self, cols: np.ndarray) -> np.ndarray:
         """``HW[cols][:, cols]``, kept for the next call with the same ``cols`` (the

@@ -234,3 +234,69 @@ def test_stiffened_solver_updates_equal_fresh_solves():
     assert np.allclose(lin.solve(sp.csr_matrix(B), rhs), np.linalg.solve(K + B, rhs),
                        rtol=0, atol=1e-12)
     assert lin.factorisations == before + 1
+
+
+def _mirrored_compliance(xy: np.ndarray, coupling: float, rng) -> np.ndarray:
+    """A block's condensed compliance on the points ``xy`` (G = identity): a smooth SPD
+    kernel per component and a normal–tangential coupling of relative size ``coupling``."""
+    n = len(xy)
+    r = np.linalg.norm(xy[:, None] - xy[None], axis=-1)
+    K = 1e-4 * (np.exp(-r / 0.3) + 0.05 * np.eye(n))
+    Z = np.zeros((n, n))
+    C = np.block([[0.8 * K, Z, Z], [Z, 0.8 * K, Z], [Z, Z, K]])
+    S = rng.standard_normal((n, 2 * n)) * coupling * 1e-4 / n
+    C[2 * n:, :2 * n] += S
+    C[:2 * n, 2 * n:] += S.T
+    return C
+
+
+def test_the_block_triangular_newton_solve_is_the_whole_one():
+    """Two identical blocks, one mirrored (z → −z), have a relative compliance whose
+    normal–tangential blocks cancel exactly (Dundurs' β = 0): the semi-smooth Newton
+    systems are then block triangular and solved block by block
+    (:attr:`NodalCompliance.decoupled`).  Over a held approach and an orthotropic
+    partial-slip path (stick and slip nodes, the far-field unknowns δ and D) the block
+    solve gives the whole system's solution to round-off; blocks of different
+    materials keep their coupling and the whole system."""
+    import dataclasses
+
+    from fem_reference.contact import Control
+    from fem_reference.kept_factors import KeptFactors
+    from fem_reference.nodal_compliance import NodalCompliance
+    from fem_reference.semismooth import semismooth
+
+    rng = np.random.default_rng(3)
+    g = np.linspace(-0.4, 0.4, 9)
+    xy = np.array([(x, y) for x in g for y in g])
+    n = len(xy)
+    G, w = sp.identity(3 * n, format="csr"), np.full(n, 0.01)
+    Rz = np.r_[np.ones(2 * n), -np.ones(n)]
+    C1 = _mirrored_compliance(xy, 0.5, rng)
+    mirrored = Rz[:, None] * C1 * Rz[None, :]
+    op = NodalCompliance.build(mirrored + C1, G, w)
+    assert op.decoupled
+    assert not NodalCompliance.build(mirrored + _mirrored_compliance(xy, 0.3, rng), G,
+                                     w).decoupled
+    law = Law(k_n=1.0, mode="friction", k_t=1.0, M2=axes_tensor(0.3**2, 0.6**2, 60.0),
+              M2inv=axes_tensor(0.3**-2, 0.6**-2, 60.0))
+    runs = []
+    for decoupled in (True, False):
+        pts = Points(G=G, w=w, xy=xy, h=(xy**2).sum(axis=1) / 20.0,
+                     inside=np.ones(n, bool))
+        kept, out = KeptFactors(), []
+        for shift in (0.0, 1e-3, 2e-3, 1e-3, -1.5e-3):
+            ctrl = Control(P=None, delta=1.5e-2, D=np.zeros(2), approach=1.5e-2,
+                           compliance=1e-5, shift=(0.5 * shift, shift), compliance_t=1e-5)
+            sol = semismooth(dataclasses.replace(op, decoupled=decoupled), law, pts, ctrl,
+                             kept=kept)
+            pts.gt_old = sol.ev.gt.copy()
+            out.append((np.c_[pts.t_old, pts.lam_n], sol.ev.state, sol.delta, sol.D))
+        runs.append(out)
+        assert (kept.factorisations == 0) == decoupled  # the path taken
+    states = np.array([s for _, s, _, _ in runs[0]])
+    assert ((states == STICK).any(axis=1) & (states == SLIP).any(axis=1)).sum() >= 3
+    for (lam, state, delta, D), (lam0, state0, delta0, D0) in zip(*runs, strict=True):
+        np.testing.assert_array_equal(state, state0)
+        assert np.abs(lam - lam0).max() <= 1e-10 * np.abs(lam0).max()
+        assert delta == pytest.approx(delta0, rel=1e-10)
+        assert np.allclose(D, D0, rtol=1e-10, atol=1e-16)
