@@ -35,11 +35,19 @@ class NodalCompliance:
         return cls(C=C, G=G, w=w, HW=H * np.tile(w, 3)[None, :], decoupled=decoupled)
 
     def block(self, cols: np.ndarray) -> np.ndarray:
-        """``HW[cols][:, cols]``, kept for the next call with the same ``cols`` (the
-        gather from the large matrix costs more than the Newton system's copy)."""
+        """``HW[cols][:, cols]`` (``cols`` sorted), kept for the next call with the same
+        ``cols`` (the gather from the large matrix costs more than the Newton system's
+        copy)."""
         last = self._last
         if last is None or not np.array_equal(last[0], cols):
-            last = (cols.copy(), self.HW[np.ix_(cols, cols)])
+            if self.decoupled:  # the normal–tangential blocks are zero: not gathered
+                k = int(np.searchsorted(cols, 2 * self.w.size))  # cols sorted
+                B = np.zeros((cols.size, cols.size))
+                B[:k, :k] = self.HW[np.ix_(cols[:k], cols[:k])]
+                B[k:, k:] = self.HW[np.ix_(cols[k:], cols[k:])]
+            else:
+                B = self.HW[np.ix_(cols, cols)]
+            last = (cols.copy(), B)
             object.__setattr__(self, "_last", last)
         return last[1]
 

@@ -246,19 +246,23 @@ class _Solver:
         tangential block (Δλ_t, ΔD) with the normal increments known — two factors of
         orders |A| and 2|A| instead of one of 3|A|."""
         nk = cols.size
-        if not (self.op.decoupled and self.law.mode == "friction"):
+        kinds = [c is None for _, c in self.extra]  # δ first (unknowns): its block is
+        e0 = nk + sum(kinds)                         # rows and columns 2|A| .. e0
+        if not (self.op.decoupled and self.law.mode == "friction"
+                and kinds == sorted(kinds, reverse=True)):
             return self.kept.solve(J, b, cols)
-        kinds = [c is None for _, c in self.extra]
-        rn = np.concatenate([np.arange(2 * na, 3 * na),
-                             nk + np.flatnonzero(kinds)]).astype(int)
-        rt = np.concatenate([np.arange(2 * na),
-                             nk + np.flatnonzero(np.logical_not(kinds))]).astype(int)
-        if J[np.ix_(rn, rt)].any():  # a coupled row (not expected): the whole system
+        n0 = 2 * na
+        if J[n0:e0, :n0].any() or J[n0:e0, e0:].any():  # a coupled row (not expected)
             return self.kept.solve(J, b, cols)
+        t = np.r_[0:n0, e0:J.shape[0]]  # the tangential unknowns
         x = np.empty_like(b)
-        x[rn] = self.kept.part("normal").solve(J[np.ix_(rn, rn)], b[rn], cols[2 * na:])
-        x[rt] = self.kept.part("tangential").solve(
-            J[np.ix_(rt, rt)], b[rt] - J[np.ix_(rt, rn)] @ x[rn], cols[:2 * na])
+        x[n0:e0] = self.kept.part("normal").solve(
+            np.ascontiguousarray(J[n0:e0, n0:e0]), b[n0:e0], cols[n0:])
+        Jtt = np.empty((t.size, t.size))
+        Jtt[:n0, :n0], Jtt[:n0, n0:] = J[:n0, :n0], J[:n0, e0:]
+        Jtt[n0:, :n0], Jtt[n0:, n0:] = J[e0:, :n0], J[e0:, e0:]
+        x[t] = self.kept.part("tangential").solve(
+            Jtt, b[t] - J[t, n0:e0] @ x[n0:e0], cols[:n0])
         return x
 
     def _tangential_rows(self, J, b, s, L, act, nk, d_e, ecol, dcol) -> None:
@@ -291,9 +295,15 @@ class _Solver:
         A = (ps / rr)[:, None, None] * P * self.r_t[nodes, None, None] @ law.M2  # ρ P r_t 𝕄² / r
         # slip rows over r: [(I − ρP)Δλ_t − n̂(1 − r c_w)Δλ_n + n̂ r Δd_z + A Δd_t
         #                   − n̂ r Δδ + A ΔD] / r = −F_t / r  (A: ρ P r_t 𝕄²)
-        dx, dy, dz = J[ix[k_sl], :nk], J[iy[k_sl], :nk], J[iz[k_sl], :nk]
-        new_x = A[:, 0, 0, None] * dx + A[:, 0, 1, None] * dy + nhat[:, 0, None] * dz
-        new_y = A[:, 1, 0, None] * dx + A[:, 1, 1, None] * dy + nhat[:, 1, None] * dz
+        # decoupled: Δd_t has only tangential columns, Δd_z only normal ones
+        t, z = (slice(0, 2 * na), slice(2 * na, nk)) if self.op.decoupled else (
+            slice(0, nk), slice(0, nk))
+        dx, dy, dz = J[ix[k_sl], t], J[iy[k_sl], t], J[iz[k_sl], z]
+        new_x, new_y = np.zeros((k_sl.size, nk)), np.zeros((k_sl.size, nk))
+        new_x[:, t] = A[:, 0, 0, None] * dx + A[:, 0, 1, None] * dy
+        new_y[:, t] = A[:, 1, 0, None] * dx + A[:, 1, 1, None] * dy
+        new_x[:, z] += nhat[:, 0, None] * dz
+        new_y[:, z] += nhat[:, 1, None] * dz
         IP = (np.eye(2)[None] - ps[:, None, None] * P) / rr[:, None, None]
         cwk = self.cw[nodes]
         rhs = -L.F[:2, nodes].T / rr[:, None] - (
