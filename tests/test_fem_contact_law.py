@@ -238,7 +238,7 @@ def test_stiffened_solver_updates_equal_fresh_solves():
     assert lin.factorisations == before + 1
 
 
-def _mirrored_compliance(xy: np.ndarray, coupling: float, rng) -> np.ndarray:
+def _block_compliance(xy: np.ndarray, coupling: float, rng) -> np.ndarray:
     """A block's condensed compliance on the points ``xy`` (G = identity): a smooth SPD
     kernel per component and a normal–tangential coupling of relative size ``coupling``."""
     n = len(xy)
@@ -288,11 +288,11 @@ def _block_and_whole(mu1, mu2, beta, approach, amplitude, angle) -> np.ndarray:
     n = len(xy)
     G, w = sp.identity(3 * n, format="csr"), np.full(n, 0.01)
     Rz = np.r_[np.ones(2 * n), -np.ones(n)]
-    C1 = _mirrored_compliance(xy, 0.5, rng)
+    C1 = _block_compliance(xy, 0.5, rng)
     mirrored = Rz[:, None] * C1 * Rz[None, :]
     op = NodalCompliance.build(mirrored + C1, G, w)
     assert op.decoupled
-    assert not NodalCompliance.build(mirrored + _mirrored_compliance(xy, 0.3, rng), G,
+    assert not NodalCompliance.build(mirrored + _block_compliance(xy, 0.3, rng), G,
                                      w).decoupled
     law = Law(k_n=1.0, mode="friction", k_t=1.0, M2=axes_tensor(mu1**2, mu2**2, beta),
               M2inv=axes_tensor(mu1**-2, mu2**-2, beta))
