@@ -65,9 +65,10 @@ def by_default(case: Case) -> str | None:
     if case.kind == "fretting":
         return ("fretting runs through the FEM only on request (--solver ic,fem,analytic): "
                 "in the worn stick zone of partial slip it does not agree with the "
-                "half-space solver (its stick edge erodes at every tangential extreme; "
-                "not shown to vanish under mesh refinement), and the article-size sweeps "
-                "take hours (docs/fem-notes.md, part 5)")
+                "half-space solver at affordable meshes (it resolves the step of the worn "
+                "profile at the stick edge only across an element, and its wear and loop "
+                "energy converge slowly as the elements shrink), and the article-size "
+                "sweeps take hours (docs/fem-notes.md, part 5)")
     return None
 
 
