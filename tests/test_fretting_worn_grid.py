@@ -22,44 +22,45 @@ from hypothesis import strategies as st
 
 import halfspace
 from cases.loader import load_case
-from reports.registry.resolution import Resolution, unresolved
+from cases.result import StepResult
+from reports.compare.point import step_resolution
+from reports.registry.resolution import unresolved
 from reports.registry.solvers import grid_budget
 
 WEAR = ("w_max", "wear_volume")
 
 
 @functools.cache
-def worn(n: int, beta: float = 90.0, **keys: float) -> dict[str, float]:
-    """The scalars at the last output (2000 cycles) of ``fretting_orthotropic`` (quick)
-    at ``beta`` on an n² grid, with the dotted case ``keys`` changed."""
+def worn(n: int, beta: float = 90.0, **keys: float) -> StepResult:
+    """The last output (2000 cycles) of ``fretting_orthotropic`` (quick) at ``beta`` on
+    an n² grid, with the dotted case ``keys`` changed."""
     case = load_case("fretting_orthotropic", quick=True,
                      overrides={"grid.nx": n, "grid.ny": n, **keys})[0]
     case = case.with_changes(friction=dataclasses.replace(case.friction, beta=beta))
     step = halfspace.solve(case).steps[-1]
     assert step.scalars["cycle"] == 2000
-    return {**step.scalars, "cell": case.grid.dx}
+    return step
 
 
 def radius(area: float) -> float:
     return math.sqrt(max(area, 0.0) / math.pi)
 
 
-def why_unresolved(s: dict[str, float]) -> str:
-    """The resolution rule's reason the wear of ``s`` is not a number on its grid ('' when
+def why_unresolved(step: StepResult) -> str:
+    """The comparisons' reason the wear of ``step`` is not a number on its grid ('' when
     it is): the slip zone a − c in cells against the wear's floor."""
-    a, c = radius(s["contact_area"]), radius(s["stick_area"])
-    return unresolved("wear_volume", "rel",
-                      Resolution(contact=a / s["cell"], slip=(a - c) / s["cell"]))
+    return unresolved("wear_volume", "rel", step_resolution(step, step, 0.0))
 
 
-def assert_converged(coarse: dict[str, float], fine: dict[str, float]) -> None:
+def assert_converged(coarse: StepResult, fine: StepResult) -> None:
     """Cells halved: w_max and the wear volume within the solver's budget for them, the
     stick zone's equivalent radius within its budget in the coarse grid's cells."""
+    c, f = coarse.scalars, fine.scalars
     for q in WEAR:
-        print(f"{q}: {coarse[q]:.5g} -> {fine[q]:.5g} ({fine[q] / coarse[q] - 1:+.2%})")
-        assert abs(coarse[q] - fine[q]) / fine[q] < grid_budget(q, "rel")
-    r = [radius(s["stick_area"]) for s in (coarse, fine)]
-    cells = abs(r[0] - r[1]) / coarse["cell"]
+        print(f"{q}: {c[q]:.5g} -> {f[q]:.5g} ({f[q] / c[q] - 1:+.2%})")
+        assert abs(c[q] - f[q]) / f[q] < grid_budget(q, "rel")
+    r = [radius(s["stick_area"]) for s in (c, f)]
+    cells = abs(r[0] - r[1]) / (coarse.x[1] - coarse.x[0])
     print(f"stick radius {r[0]:.4f} -> {r[1]:.4f} mm ({cells:.2f} cells)")
     assert cells < grid_budget("stick_area", "cells")
 
@@ -68,7 +69,7 @@ def test_the_bundled_worn_stick_zone_and_wear_converge_in_space():
     """β = 90° of the quick sweep, 31² against 63²: resolved, in partial slip, converged."""
     coarse, fine = worn(31), worn(63)
     assert why_unresolved(coarse) == ""
-    assert fine["stick_area"] > 0
+    assert fine.scalars["stick_area"] > 0
     assert_converged(coarse, fine)
 
 
@@ -84,7 +85,7 @@ def test_generated_worn_contacts_converge_where_resolved(mu1, ratio, beta, ampli
     keys = {"friction.mu1": mu1, "friction.mu2": mu1 * ratio,
             "fretting.amplitude": amplitude, "geometry.R": R}
     coarse = worn(31, beta, **keys)
-    assume(coarse["stick_area"] > 0 and why_unresolved(coarse) == "")
+    assume(coarse.scalars["stick_area"] > 0 and why_unresolved(coarse) == "")
     print(f"\nmu = ({mu1:.3f}, {mu1 * ratio:.3f}), beta = {beta:.1f}, amplitude "
           f"{amplitude:.4f} mm, R = {R:.1f} mm")
     assert_converged(coarse, worn(63, beta, **keys))
