@@ -1,6 +1,14 @@
-"""Finite-element penalty-contact reference (scikit-fem on gmsh meshes).
+"""Finite-element contact reference (scikit-fem on gmsh meshes): P2 elasticity of finite
+blocks, condensed onto the contact surface, and a semi-smooth Newton contact solve.
 
 Shares nothing with ``halfspace`` but the case model and the result container.
+
+Rooms, in their order of dependence (``tests/test_architecture.py``): :mod:`.contact`
+(laws and solves on the condensed surface) < :mod:`.model` (mesh, elasticity, block,
+surface, shape) < :mod:`.fields` (sampling, contact zone, stresses, planes, VTU); on top
+the run (:mod:`.run`), its load paths (:mod:`.loading`, :mod:`.fretting`), the common
+result (:mod:`.output`), the entry (:mod:`.solver`) and the cost estimate
+(:mod:`.cost`). :mod:`.errors` is below every room.
 
 Public API:
 
@@ -24,11 +32,11 @@ from collections.abc import Callable
 from cases.model import Case
 from cases.result import Cost, RunResult, StepResult
 
-from .contact import ContactConvergenceError
+from .contact.augmented import ContactConvergenceError
 from .errors import FemError, FemUnsupported
-from .mesh import MeshError
+from .fields.vtu import read_vtu, write_vtu
+from .model.mesh import MeshError
 from .solver import solve as _solve
-from .vtu import read_vtu, write_vtu
 
 
 def solve(case: Case, *, progress: bool = False,
@@ -47,7 +55,7 @@ def supports(case: Case) -> str | None:
     if case.fem.order != 2:
         return f"fem.order = {case.fem.order}: the FEM reference implements P2 only"
     if case.fretting is not None and case.fretting.transverse == "free":
-        from .shape import choose_shape
+        from .model.shape import choose_shape
 
         if choose_shape(case) != "half":
             return ("fretting.transverse = 'free' with the friction axes oblique to the "

@@ -1,9 +1,9 @@
 """What a case will cost the FEM reference, estimated before any meshing or allocation.
 
-Mesh: :func:`mesh_spec` builds the :class:`~fem_reference.mesh.MeshSpec` that
-:class:`~fem_reference.model.FemModel` builds, and :func:`element_count` counts the
+Mesh: :func:`mesh_spec` builds the :class:`~fem_reference.model.mesh.MeshSpec` that
+:class:`~fem_reference.model.fem_model.FemModel` builds, and :func:`element_count` counts the
 tetrahedra gmsh will make without meshing, integrating the element density of the size
-field of :mod:`fem_reference.mesh` over the block by Gauss-Legendre panels in (r, z);
+field of :mod:`fem_reference.model.mesh` over the block by Gauss-Legendre panels in (r, z);
 P2 nodes, free DOFs and the condensed surface DOFs follow.  Memory: the process's base
 plus the largest stage of the model — assembly, the kept PARDISO factor, the
 condensation ``Sᵀ K⁻¹ S``, the dense surface operators.  Time: start-up, meshing,
@@ -28,9 +28,9 @@ import numpy as np
 from cases.model import Case, FemSettings
 from cases.result import Cost
 
-from .mesh import SURFACE_GRADING, MeshSpec
-from .model import FemModel
-from .shape import choose_shape, expected_radius, has_companion, reference_length
+from .model.fem_model import FemModel
+from .model.mesh import SURFACE_GRADING, MeshSpec
+from .model.shape import choose_shape, expected_radius, has_companion, reference_length
 
 C_TET = 0.225  # mean tetrahedron volume / size³ of gmsh's meshes
 C_TRI = 0.405  # mean surface triangle area / size²
@@ -62,7 +62,7 @@ _GAUSS = np.polynomial.legendre.leggauss(10)
 
 
 def mesh_spec(case: Case) -> tuple[MeshSpec | None, dict]:
-    """The mesh parameters :class:`~fem_reference.model.FemModel` uses for ``case``
+    """The mesh parameters :class:`~fem_reference.model.fem_model.FemModel` uses for ``case``
     (None for the spec when they are invalid: the run would refuse them) and the model's
     other drivers: ``a_max`` (expected radius / a_ref), ``r_c``, ``shape``, ``comps``
     (condensed components), ``nus`` (distinct Poisson's ratios), ``law``."""
@@ -91,7 +91,7 @@ def mesh_spec(case: Case) -> tuple[MeshSpec | None, dict]:
 
 
 def _size(r: np.ndarray, z: np.ndarray, p: dict) -> np.ndarray:
-    """The mesh-size field of :func:`fem_reference.mesh._generate` at radius r, depth z."""
+    """The mesh-size field of :func:`fem_reference.model.mesh._generate` at radius r, depth z."""
     scale = 1.0
     if p["r_fine"] is not None and p["r_fine"] < p["r_ref"]:
         scale = np.maximum(1.0, np.hypot(r, z) / p["r_fine"])

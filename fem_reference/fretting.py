@@ -4,7 +4,7 @@ The normal load (or approach) is applied and held; the tangential rigid displace
 g_t,o of body a follows the case's imposed path along ``load.slide_angle``: the initial
 loading 0 → +A (:meth:`cases.model.Fretting.loading_path`, no wear counted), then cycles
 +A → −A → +A (:meth:`cases.model.Fretting.cycle_path`).  Each step solves the friction
-law with its history (the return map of :mod:`fem_reference.contact`, augmented so that
+law with its history (the return map of :mod:`fem_reference.contact.augmented`, augmented so that
 stick is exact) and wears both bodies by the orthotropic Archard law (Eqs. 21–23):
 
     Δw_k = J p_n ‖Δg_t‖_i,k      at every contact node,
@@ -36,8 +36,8 @@ import numpy as np
 
 from cases.result import STICK, RunEvent
 
-from .contact import Control, Solution
-from .contact_law import Evaluation
+from .contact.augmented import Control, Solution
+from .contact.laws import Evaluation
 from .loading import (
     add_wear,
     commit,
@@ -46,8 +46,8 @@ from .loading import (
     progress_bar,
     solve_increment,
 )
+from .model.shape import slide_direction, wear_norms
 from .run import OutputState, Run
-from .shape import slide_direction, wear_norms
 
 #: "load lost": under a held approach the least P of a cycle below this fraction of the
 #: load after the initial loading (the same definition as the half-space solver's)
@@ -60,7 +60,7 @@ CYCLE_COLUMNS = ("cycle", "energy", "min_stick_area", "gross_slip", "w_max",
 def fretting_control(run: Run, shift: float) -> Control:
     """The normal load (or approach) held and the rigid tangential displacement
     ``shift`` along ``load.slide_angle`` prescribed (a held approach is the
-    half-space's, :mod:`fem_reference.far_field`; δ starts from the current one)."""
+    half-space's, :mod:`fem_reference.model.far_field`; δ starts from the current one)."""
     m = run.model
     load = m.case.load
     target = shift * slide_direction(m.case)

@@ -26,12 +26,12 @@ import numpy as np
 from cases.model import Case, CaseError, SlidingWear
 from cases.result import OPEN, SLIP, STICK
 
-from .contact import Control, Solution, augmented
-from .contact_law import Evaluation, evaluate
+from .contact.augmented import Control, Solution, augmented
+from .contact.laws import Evaluation, evaluate
+from .contact.semismooth import semismooth
 from .errors import FemError
+from .model.shape import slide_direction, wear_compliances
 from .run import OutputState, Run, hertz_start
-from .semismooth import semismooth
-from .shape import slide_direction, wear_compliances
 
 N_NORMAL_DISSIMILAR = 5  # normal load increments of dissimilar materials
 N_TANGENTIAL = 5  # tangential load (or shift) increments
@@ -41,7 +41,7 @@ def control(run: Run, P_frac: float = 1.0, Q_frac: float = 0.0) -> Control:
     """The control of a solve at fractions of the case's normal and tangential loads
     (approach and shift likewise); the state's δ and g_t,o where they are unknowns.  A
     held approach or shift is the half-space's: the blocks' δ and g_t,o follow from
-    the far-field compliances (:mod:`fem_reference.far_field`)."""
+    the far-field compliances (:mod:`fem_reference.model.far_field`)."""
     m = run.model
     load = m.case.load
     P = None if load.P is None else load.P * P_frac
@@ -116,7 +116,7 @@ def commit(run: Run, sol: Solution, probe_ev: Evaluation) -> None:
 def add_wear(run: Run, dw_a: np.ndarray, dw_b: np.ndarray) -> None:
     """Add the wear increments of a step, Δw = p_n ‖Δg‖_i per node, to bodies a and b:
     nodal coefficients in the modified basis (the weighted gap,
-    :mod:`fem_reference.nodal`), and at the probes the wear field they define (the
+    :mod:`fem_reference.model.nodal_basis`), and at the probes the wear field they define (the
     field the gap of the probes holds)."""
     for pts, inc_a, inc_b in ((run.nodes, dw_a, dw_b),
                               (run.probes, run.Nmod @ dw_a, run.Nmod @ dw_b)):

@@ -4,13 +4,13 @@ the FE mesh.
 Surface fields on the case grid (cell centres; a quarter/half model is mirrored, and
 components odd under a mirror vanish on the mirror plane):
 ``p_n, p_x, p_y`` the nodal tractions of the contact solve (one multiplier per surface
-node, :mod:`fem_reference.nodal`) interpolated linearly on the four sub-triangles of each
-facet — a monotone reconstruction that does not ring where the traction falls to zero
-inside a facet (the edge of a worn flat) — zero outside the contact; ``gap`` from the
-full FE displacements;
+node, :mod:`fem_reference.model.nodal_basis`) interpolated linearly on the four
+sub-triangles of each facet — a monotone reconstruction that does not ring where the
+traction falls to zero inside a facet (the edge of a worn flat) — zero outside the
+contact; ``gap`` from the full FE displacements;
 ``state``: a cell is closed inside the contact boundary r(θ), the outermost point with
 a gap below ``GAP_TOL`` × δ0 along rays from the centre (robust against the penalty:
-see :func:`fem_reference.contact_zone.contact_states`), stick or slip by the return map
+see :func:`fem_reference.fields.contact_zone.contact_states`), stick or slip by the return map
 evaluated at the cell centre with its own history; ``wear_a/b`` likewise; ``slip_x/y``
 the relative tangential displacement increment of the step (tangential loading: since
 the end of the normal loading; static full sliding: the unit slip direction).
@@ -24,16 +24,16 @@ which overshoot the field: +11 % in the partial-slip fretting annulus), ``wear_v
 the wear field's integral (Σ d_k w_k); ``vm_max`` and its
 location over both planes (the plane samples, :func:`cases.result.vm_max_location`);
 ``wall_s`` the time since ``solve`` started.  Extra: ``approach`` (the half-space's
-δ, :mod:`fem_reference.far_field`; ``approach_block`` the blocks'), ``shift_x/y``
+δ, :mod:`fem_reference.model.far_field`; ``approach_block`` the blocks'), ``shift_x/y``
 (likewise; ``shift_block_x/y``)
 (g_t,o), ``P_reaction`` (the support reaction of the block: global equilibrium),
 ``vm_axis_max``/``vm_axis_z`` (the on-axis σ_VM maximum and its depth from a
-least-squares cubic, :func:`fem_reference.stress_planes.axis_peak`).
+least-squares cubic, :func:`fem_reference.fields.planes.axis_peak`).
 
 Tables: ``"axis/<step>"`` the stresses on the load axis (x0, y0) at 8x the plane
 resolution in depth; ``"line_x/<step>"`` and ``"line_y/<step>"`` the projected
 tractions, the gap and the states along the lines through the centre.  Mesh: the FE
-fields of the reported body (:func:`fem_reference.vtu.fields_mesh`).
+fields of the reported body (:func:`fem_reference.fields.vtu.fields_mesh`).
 """
 
 from __future__ import annotations
@@ -47,12 +47,12 @@ import numpy as np
 from cases.model import Body
 from cases.result import OPEN, STICK, Plane, StepResult, vm_max_location
 
-from .contact_law import Evaluation
-from .contact_zone import ContactZone, closing_measure, contact_zone
-from .model import BodyDisplacement
+from .contact.laws import Evaluation
+from .fields.contact_zone import ContactZone, closing_measure, contact_zone
+from .fields.planes import AXIS_FIT_WINDOW, SurfaceStress, axis_peak, stress_planes
+from .fields.vtu import fields_mesh
+from .model.fem_model import BodyDisplacement
 from .run import OutputState, Run
-from .stress_planes import AXIS_FIT_WINDOW, SurfaceStress, axis_peak, stress_planes
-from .vtu import fields_mesh
 
 Table = dict[str, np.ndarray]
 
@@ -109,8 +109,9 @@ def step_output(run: Run, out: OutputState, *, t0: float, vtu: bool = True) -> S
 def body_displacements(run: Run, ev: Evaluation
                        ) -> tuple[BodyDisplacement, BodyDisplacement]:
     """Full FE displacements of bodies a and b (block frames) under the nodal tractions
-    of ``ev`` (forces ``Gᵀ W λ``, :mod:`fem_reference.nodal`; with a companion also the
-    y forces at every surface node, :meth:`fem_reference.model.FemModel.body_displacements`)."""
+    of ``ev`` (forces ``Gᵀ W λ``, :mod:`fem_reference.model.nodal_basis`; with a companion
+    also the y forces at every surface node,
+    :meth:`fem_reference.model.fem_model.FemModel.body_displacements`)."""
     w = run.nodes.w
     wt = np.concatenate([w * ev.t[:, 0], w * ev.t[:, 1], w * ev.pn])
     f_y = run.Binv @ (w * ev.t[:, 1]) if run.model.sym.companion else None
@@ -134,7 +135,7 @@ def probe_gap(run: Run, ua: BodyDisplacement, ub: BodyDisplacement) -> np.ndarra
 
 def recover_tractions(run: Run, ev: Evaluation) -> Tractions:
     """The nodal tractions of ``ev`` and their values at the probes (linear on the
-    facets' sub-triangles, :meth:`fem_reference.surface.ContactSurface.sub_interpolation`)."""
+    facets' sub-triangles, :meth:`fem_reference.model.surface.ContactSurface.sub_interpolation`)."""
     Nsub, sampling = run.sampling.Nsub, run.sampling
     # with a companion the y traction is even under the mirror (module doc of .model)
     sy = 1.0 if run.model.sym.companion else sampling.sy
@@ -235,7 +236,7 @@ def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tract
 def _body_scalars(run: Run, u_body: BodyDisplacement, mat: Body, t0: float, P: float,
                   Q: tuple[float, float]) -> dict[str, float]:
     """``wall_s`` and the state scalars: the approach and the shift (the half-space's:
-    the blocks' δ plus c P and g_t,o plus c_t Q, :mod:`fem_reference.far_field`;
+    the blocks' δ plus c P and g_t,o plus c_t Q, :mod:`fem_reference.model.far_field`;
     ``approach_block``, ``shift_block_x/y`` the blocks' own), support reaction."""
     return {
         "wall_s": time.perf_counter() - t0,

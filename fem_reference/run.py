@@ -1,8 +1,8 @@
 """One FEM run of a case: its set-up on a model, its current state, its output states.
 
 :func:`start_run` builds the contact points (one per surface node of the contact zone,
-with the dual weights of :mod:`fem_reference.nodal`, and the output probes of
-:mod:`fem_reference.sampling`) and the stress sampler, and starts from the displacements
+with the dual weights of :mod:`fem_reference.model.nodal_basis`, and the output probes of
+:mod:`fem_reference.fields.sampling`) and the stress sampler, and starts from the displacements
 under the Hertz pressure (:func:`hertz_start`).  The load path (:mod:`fem_reference.loading`)
 advances the state and hands over an :class:`OutputState` per output step; the output
 recovery (:mod:`fem_reference.output`) reads both.
@@ -16,16 +16,16 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .contact import Solution
-from .contact_law import Evaluation, Points
-from .far_field import block_offset, block_offset_t
-from .kept_factors import KeptFactors
-from .model import FemModel
-from .nodal import coefficients, dual_weights, modified_basis
-from .nodal_compliance import NodalCompliance
-from .sampling import ProbeSampling, probe_layout, probe_sampling
-from .stiffened import StiffenedSolver
-from .stresses import PointLocator
+from .contact.augmented import Solution
+from .contact.compliance import NodalCompliance
+from .contact.kept_factors import KeptFactors
+from .contact.laws import Evaluation, Points
+from .contact.stiffened import StiffenedSolver
+from .fields.sampling import ProbeSampling, probe_layout, probe_sampling
+from .fields.stresses import PointLocator
+from .model.far_field import block_offset, block_offset_t
+from .model.fem_model import FemModel
+from .model.nodal_basis import coefficients, dual_weights, modified_basis
 
 
 @dataclass
@@ -97,7 +97,7 @@ def start_run(model: FemModel) -> Run:
 def far_compliance(model: FemModel, nodes: Points, G_all: sp.csr_matrix
                    ) -> tuple[float, float]:
     """(c, c_t) = Σ_bodies c₁(ν)/E [mm/N], the normal and tangential far-field
-    compliances the blocks lack (:mod:`fem_reference.far_field`): normal from a unit load
+    compliances the blocks lack (:mod:`fem_reference.model.far_field`): normal from a unit load
     of the Hertz distribution of radius a_ref applied through the contact points'
     weights, tangential from a unit force at the axis (0 for the quarter model, which
     carries no tangential load)."""

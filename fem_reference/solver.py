@@ -2,7 +2,7 @@
 
 The run is assembled from one module per job:
 
-- :mod:`fem_reference.model`: the FE model of the case (mesh, symmetry, condensation);
+- :mod:`fem_reference.model.fem_model`: the FE model of the case (mesh, symmetry, condensation);
 - :mod:`fem_reference.run`: the set-up of a run (contact points, probes, recovery) and
   its state, started from the Hertz solution;
 - :mod:`fem_reference.loading`: the load paths of static cases (normal, then
@@ -11,15 +11,15 @@ The run is assembled from one module per job:
   steps per output cycle, ``loops`` and ``cycles`` tables, regime events);
   :func:`load_path` picks the case's;
 - :mod:`fem_reference.output`: the output of one step — surface fields on the case grid
-  (the nodal tractions of :mod:`fem_reference.nodal`, interpolated; the contact
-  region, :mod:`fem_reference.contact_zone`), the scalars, the stress planes and the
-  load axis (:mod:`fem_reference.stress_planes`), the tables and the ``.vtu`` mesh.
+  (the nodal tractions of :mod:`fem_reference.model.nodal_basis`, interpolated; the contact
+  region, :mod:`fem_reference.fields.contact_zone`), the scalars, the stress planes and the
+  load axis (:mod:`fem_reference.fields.planes`), the tables and the ``.vtu`` mesh.
 
 Extra outputs: ``RunResult.tables["axis/<step>"]`` holds the stresses on the load axis
 (x0, y0) at 8x the plane resolution in depth; ``tables["line_x/<step>"]`` and
 ``["line_y/<step>"]`` the projected tractions, the gap and the states along the lines
 through the centre; ``RunResult.meta["vtu"]`` a list of ``(step, meshio.Mesh)`` with the
-FE fields of the reported body (write them with :func:`fem_reference.vtu.write_vtu`);
+FE fields of the reported body (write them with :func:`fem_reference.fields.vtu.write_vtu`);
 ``meta`` also gives the model (quarter/half/full), DOFs, penalty and timings.
 """
 
@@ -37,7 +37,7 @@ from cases.result import RunResult, StepResult
 from .errors import FemUnsupported
 from .fretting import fretting_path
 from .loading import sliding_wear_path, static_path
-from .model import FemModel
+from .model.fem_model import FemModel
 from .output import step_output
 from .run import OutputState, Run, start_run
 
@@ -59,9 +59,9 @@ def solve(case: Case, progress: bool = False, *, vtu: bool = True, log=None,
     ``on_output`` receives each output step as soon as it is computed (before the load
     path goes on).  ``vtu``: keep the FE fields of every output step in ``meta["vtu"]``
     as ``(step, meshio.Mesh)`` pairs.  ``log``: optional callable receiving progress
-    messages (set-up timings).  Raises :class:`~fem_reference.model.FemError` for a case
+    messages (set-up timings).  Raises :class:`~fem_reference.model.fem_model.FemError` for a case
     the model cannot represent and
-    :class:`~fem_reference.contact.ContactConvergenceError` (with the residual) when the
+    :class:`~fem_reference.contact.augmented.ContactConvergenceError` (with the residual) when the
     contact iteration fails.
     """
     t0 = time.perf_counter()

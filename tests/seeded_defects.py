@@ -121,11 +121,11 @@ DEFECTS = [
            ("spence",)),
     # ---------------------------------------------------------------- fem_reference
     Defect("FEM: friction axes turned the wrong way",
-           "fem_reference/contact_law.py", "b = np.radians(beta_deg)",
+           "fem_reference/contact/laws.py", "b = np.radians(beta_deg)",
            "b = np.radians(-beta_deg)",
            ("pin_on_disk_orthotropic",), fem=True),
     Defect("FEM: Lame's lambda with (1 - nu) for (1 - 2 nu)",
-           "fem_reference/elasticity.py",
+           "fem_reference/model/elasticity.py",
            "return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), E / (2.0 * (1.0 + nu))",
            "return E * nu / ((1.0 + nu) * (1.0 - nu)), E / (2.0 * (1.0 + nu))",
            ("hertz",), fem=True),

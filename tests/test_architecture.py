@@ -1,6 +1,7 @@
-"""The layers of ``reports/`` (reports/README.md): each sub-package imports only those
-its row allows, nothing imports the CLI, only the registry knows the solver packages,
-and no import circle exists between the project's modules."""
+"""The layers of ``reports/`` (reports/README.md) and of ``fem_reference/`` (its package
+docstring): each sub-package imports only those its row allows, nothing imports the CLI,
+only the registry knows the solver packages, and no import circle exists between the
+project's modules."""
 
 from __future__ import annotations
 
@@ -22,6 +23,11 @@ ALLOWED = {
     "run": {"registry", "store", "compare", "studies"},
     "render": {"registry", "store", "compare", "studies"},
 }
+
+#: rooms of fem_reference, lowest first: a room imports only the rooms before it (and
+#: fem_reference.errors, below every room); the modules on top (run, loading, fretting,
+#: output, solver, cost) may import any room, and no room imports them
+FEM_ROOMS = ("contact", "model", "fields")
 
 
 def modules() -> dict[str, Path]:
@@ -140,3 +146,23 @@ def test_reading_results_loads_no_running_machinery():
             seen.add(n)
             todo += GRAPH.get(n, ())
     assert sorted(n for n in seen if room(n) == "run") == []
+
+
+def fem_room(name: str) -> str | None:
+    """The room of fem_reference a module belongs to (None: a module on top)."""
+    parts = name.split(".")
+    return parts[1] if parts[0] == "fem_reference" and len(parts) > 2 else None
+
+
+def test_every_module_of_fem_reference_below_the_top_lives_in_a_room():
+    assert sorted({fem_room(n) for n in GRAPH} - {None}) == sorted(FEM_ROOMS)
+
+
+@pytest.mark.parametrize("name", sorted(n for n in GRAPH if fem_room(n)))
+def test_layers_of_fem_reference(name):
+    here = FEM_ROOMS.index(fem_room(name))
+    allowed = {f"fem_reference.{r}" for r in FEM_ROOMS[: here + 1]}
+    bad = sorted(t for t in GRAPH[name] if t.startswith("fem_reference")
+                 and t != "fem_reference.errors"
+                 and not any(t == a or t.startswith(a + ".") for a in allowed))
+    assert bad == [], f"{name} may import only {sorted(allowed)} and fem_reference.errors"

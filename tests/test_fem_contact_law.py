@@ -12,8 +12,8 @@ from hypothesis import strategies as st
 
 from cases.model import Body, Friction
 from cases.result import OPEN, SLIP, STICK
-from fem_reference.contact_law import Law, Points, axes_tensor, evaluate, norm_with
-from fem_reference.shape import wear_compliances
+from fem_reference.contact.laws import Law, Points, axes_tensor, evaluate, norm_with
+from fem_reference.model.shape import wear_compliances
 
 pytestmark = pytest.mark.fem
 
@@ -176,7 +176,7 @@ def test_stiffened_solve_equals_the_dense_solve(pattern):
     slip point couples its tangential traction to u_n but not p_n to u_t: with the
     nodal contact points of the dissimilar case 7 such rows occurred, and restricting to
     the columns alone gave a 3 % wrong Newton step)."""
-    from fem_reference.contact import _solve_stiffened
+    from fem_reference.contact.augmented import _solve_stiffened
 
     rng = np.random.default_rng(7)
     n = 40
@@ -196,11 +196,11 @@ def test_stiffened_solve_equals_the_dense_solve(pattern):
 
 
 def test_stiffened_solver_updates_equal_fresh_solves():
-    """The kept factors with Woodbury updates (:mod:`fem_reference.stiffened`) solve a
+    """The kept factors with Woodbury updates (:mod:`fem_reference.contact.stiffened`) solve a
     sequence of contact tangents like a dense solve of each, while points change state
     (a local change of B), come into contact (new DOFs) and leave it; a change of too
     high a rank refactorises."""
-    from fem_reference.stiffened import StiffenedSolver
+    from fem_reference.contact.stiffened import StiffenedSolver
 
     rng = np.random.default_rng(11)
     n = 200
@@ -257,8 +257,8 @@ def _same_newton_step(op, law, pts, ctrl) -> None:
     from the whole system (fresh LU factors both), equal to round-off."""
     import dataclasses
 
-    from fem_reference.kept_factors import KeptFactors
-    from fem_reference.semismooth import _Solver, _State
+    from fem_reference.contact.kept_factors import KeptFactors
+    from fem_reference.contact.semismooth import _Solver, _State
 
     steps = []
     for decoupled in (True, False):
@@ -277,10 +277,10 @@ def _block_and_whole(mu1, mu2, beta, approach, amplitude, angle) -> np.ndarray:
     by block and as whole systems, asserted equal; returns the states (steps, n)."""
     import dataclasses
 
-    from fem_reference.contact import Control
-    from fem_reference.kept_factors import KeptFactors
-    from fem_reference.nodal_compliance import NodalCompliance
-    from fem_reference.semismooth import semismooth
+    from fem_reference.contact.augmented import Control
+    from fem_reference.contact.compliance import NodalCompliance
+    from fem_reference.contact.kept_factors import KeptFactors
+    from fem_reference.contact.semismooth import semismooth
 
     rng = np.random.default_rng(3)
     g = np.linspace(-0.4, 0.4, 9)

@@ -75,7 +75,7 @@ def test_estimate_matches_the_calibration_runs(name, point, tets, dofs, m, peak_
 def test_estimate_builds_the_solvers_mesh_spec(monkeypatch):
     """The spec, condensed components and Poisson's ratios the estimate assumes are the
     ones FemModel builds (caught where it asks for its factorised block, before any meshing)."""
-    from fem_reference import block, model
+    from fem_reference.model import block, fem_model
 
     seen = {}
 
@@ -92,7 +92,7 @@ def test_estimate_builds_the_solvers_mesh_spec(monkeypatch):
                  "pin_on_disk", "pin_on_disk_orthotropic"):
         for case in load_case(name, quick=True):
             with pytest.raises(Stop):
-                model.FemModel(case)
+                fem_model.FemModel(case)
             spec, info = cost.mesh_spec(case)
             assert spec == seen["spec"], (name, case.param)
             assert info["comps"] == seen["comps"] and info["nus"] == seen["nus"]
@@ -100,7 +100,7 @@ def test_estimate_builds_the_solvers_mesh_spec(monkeypatch):
 
 
 def test_estimate_never_meshes(monkeypatch):
-    from fem_reference import mesh
+    from fem_reference.model import mesh
 
     def no(*a, **k):
         raise AssertionError("the estimate must not mesh")

@@ -10,7 +10,7 @@ imposed path, its energy by the same trapezoidal rule on the same steps, so the 
 own error is not charged).  Measured 2026-11-24 (partial | gross slip): P +0.025 |
 +0.043 %, loop max |ΔQ| 0.024 | 0.077 % of μP, energy 0.26 | 0.05 %, w_max −4.2 |
 −0.49 %.  Without the
-far-field compliances of the block (fem_reference/far_field.py) the held approach gave
+far-field compliances of the block (fem_reference/model/far_field.py) the held approach gave
 P +4.4 %, and the loop missed by 0.4 | 4.4 % of μP.
 """
 
@@ -106,7 +106,7 @@ def test_expected_radius_and_model_of_a_fretting_case():
     half model, along 30° the full block."""
     from dataclasses import replace
 
-    from fem_reference.shape import choose_shape, expected_radius
+    from fem_reference.model.shape import choose_shape, expected_radius
 
     worn = load_case("fretting_orthotropic", quick=True)[0]
     assert expected_radius(worn, math.sqrt(worn.R * worn.load.approach)) == pytest.approx(

@@ -117,7 +117,7 @@ def test_sliding_high_friction_maximum_at_surface():
 def test_the_surface_row_carries_the_tractions():
     """Body b, sliding at μ = 0.5 (the σ_VM maximum on the surface): the planes' surface
     row is the boundary condition, the recovered tractions, not the surface elements'
-    gradients (fem_reference.stress_planes); the half-space solver's kernels give its
+    gradients (fem_reference.fields.planes); the half-space solver's kernels give its
     own surface row the same convention."""
     import halfspace
 
@@ -140,7 +140,7 @@ def test_cattaneo_mindlin_shift_is_the_half_space_one():
     identical bodies).  The blocks alone shift more (they also rock about their fixed
     bottoms): +3.6 % (L = 10 a0) and +1.6 % (20 a0) at h = a0/4, +1.7 % at the quick
     a0/8, 20 a0 and +0.8 % at a0/8, 40 a0.  With the far-field compliance of
-    fem_reference/far_field.py the shift is the half-space's whatever the block
+    fem_reference/model/far_field.py the shift is the half-space's whatever the block
     (measured −0.03 / −0.15 % at a0/4; −0.05 and −0.04 % at a0/8, 20 and 40 a0): bound
     0.5 %, the two blocks within 0.3 % of each other (the blocks' own: 2.0 %)."""
     shifts = []
@@ -161,12 +161,12 @@ def test_cattaneo_mindlin_shift_is_the_half_space_one():
 def test_orthotropic_sliding_half_block_with_companion(monkeypatch):
     """β = 45°: p_t is not parallel to the slip (Eq. 38).  The contact problem is normal
     and symmetric about y = 0, so a half block solves it; the y traction, even in y, is
-    carried by the antisymmetric companion (fem_reference.model).  Against the full
+    carried by the antisymmetric companion (fem_reference.model.fem_model).  Against the full
     block (same h, its own mesh): σ_VM planes within 3.5 % (L2; measured 3.0 % / 2.6 %
     on xz / yz, the two meshes' difference: p_n 3.1 %), Q and the support reaction to
     1e-9.  Without the companion the yz plane misses by 15.5 %, with its sign flipped by
     26 %."""
-    from fem_reference import model, shape
+    from fem_reference.model import fem_model, shape
     from reports.compare.metrics import compare_steps
 
     case = load_case("sliding_friction", quick=True)[0]
@@ -181,7 +181,7 @@ def test_orthotropic_sliding_half_block_with_companion(monkeypatch):
     assert -sc["Qx"] == pytest.approx(P * d_star, rel=1e-9)
     assert abs(sc["Qy"]) > 0.05 * P
     assert sc["P_reaction"] == pytest.approx(P, rel=1e-9)
-    monkeypatch.setattr(model, "has_companion", lambda case: False)
+    monkeypatch.setattr(fem_model, "has_companion", lambda case: False)
     monkeypatch.setattr(shape, "has_companion", lambda case: False)
     full = solve(case, vtu=False)
     assert full.meta["model"] == "full"

@@ -129,7 +129,7 @@ def test_fields_are_consistent():
     h = case.fem.h * a0
     # the gap vanishes inside (exactly: the augmented Lagrangian leaves no penetration);
     # the closed cells reach half a node spacing past the last node in contact
-    # (fem_reference.contact_zone), where the gap stays below the Hertz gap one element
+    # (fem_reference.fields.contact_zone), where the gap stays below the Hertz gap one element
     # outside the contact
     inner = closed & (r < a0 - h)
     assert inner.sum() > 10 and np.abs(s["gap"][inner]).max() < 1e-9 * d0
@@ -186,7 +186,7 @@ def test_contact_area_converges():
 def test_block_size_effect():
     """The finite block (bottom fixed) is stiffer than the half-space: the blocks' own
     approach is short of δ0 and σ_VM high; both tend to the half-space values as the
-    block grows.  The far-field compliance (fem_reference/far_field.py), measured from
+    block grows.  The far-field compliance (fem_reference/model/far_field.py), measured from
     each block's own surface displacement against the closed form outside the contact,
     restores the half-space approach whatever the block: at h = a0/4 measured −1.55e-3
     (L = 10 a0) and −1.36e-3 (20 a0) from δ0 — the two within 1.9e-4 of each other,
@@ -261,8 +261,8 @@ def test_nonconvergence_raises_with_residual():
     case = load_case("hertz", quick=True)[0]
     case = case.with_changes(fem=FemSettings(block=10, depth=10, h=0.5),
                              solver=case.solver.__class__(max_iter=1, tol=1e-10))
-    import fem_reference.contact as contact
-    import fem_reference.semismooth as semismooth
+    import fem_reference.contact.augmented as contact
+    import fem_reference.contact.semismooth as semismooth
 
     orig = contact._newton
 

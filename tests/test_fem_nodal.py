@@ -1,4 +1,4 @@
-"""Node-wise contact on the P2 surface (fem_reference/nodal.py): the modified basis, its
+"""Node-wise contact on the P2 surface (fem_reference/model/nodal_basis.py): the modified basis, its
 dual weights and the sub-triangle interpolation, checked against element-by-element
 quadrature of the dual functions built independently here."""
 
@@ -9,10 +9,10 @@ import pytest
 from skfem.quadrature import get_quadrature
 from skfem.refdom import RefTri
 
-from fem_reference.elasticity import P2Space
-from fem_reference.mesh import MeshSpec, block_mesh
-from fem_reference.nodal import ALPHA, coefficients, dual_weights, modified_basis
-from fem_reference.surface import ContactSurface, p2_triangle_values, sub_triangle_values
+from fem_reference.model.elasticity import P2Space
+from fem_reference.model.mesh import MeshSpec, block_mesh
+from fem_reference.model.nodal_basis import ALPHA, coefficients, dual_weights, modified_basis
+from fem_reference.model.surface import ContactSurface, p2_triangle_values, sub_triangle_values
 
 
 @pytest.fixture(scope="module")

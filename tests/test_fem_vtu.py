@@ -9,8 +9,8 @@ from skfem import MeshTet
 from cases.loader import load_case
 from cases.model import FemSettings
 from fem_reference import read_vtu, solve, write_vtu
-from fem_reference.elasticity import P2Space, stress_from_gradient
-from fem_reference.vtu import fields_mesh
+from fem_reference.fields.vtu import fields_mesh
+from fem_reference.model.elasticity import P2Space, stress_from_gradient
 
 pytestmark = pytest.mark.fem
 

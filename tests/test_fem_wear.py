@@ -88,7 +88,7 @@ def test_wear_profile_is_axisymmetric_and_follows_the_pressure():
     # the worn gap: inside the contact the gap closes on the worn profile, exactly (the
     # augmented Lagrangian) wherever the cell is more than two elements from the edge
     # (the element size there is h0 a/a0); in the last elements the closed region ends
-    # half a node spacing past the last node in contact (fem_reference.contact_zone)
+    # half a node spacing past the last node in contact (fem_reference.fields.contact_zone)
     closed = st.surface["state"] != 0
     d0 = hertz_solution(case).delta
     a_x = st.scalars["a_x"]

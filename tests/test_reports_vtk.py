@@ -12,8 +12,8 @@ from skfem import MeshTet
 
 from cases.loader import load_case
 from cases.result import STRESS_COMPONENTS, Plane, StepResult, load_step, von_mises
-from fem_reference.elasticity import P2Space
-from fem_reference.vtu import fields_mesh
+from fem_reference.fields.vtu import fields_mesh
+from fem_reference.model.elasticity import P2Space
 from reports.cli import main
 from reports.store import vtk
 

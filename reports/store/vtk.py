@@ -1,6 +1,6 @@
 """Grid solvers' output steps as VTK unstructured grids (``.vtu``) for ParaView.
 
-The meshes are in the frame of the FEM's ``.vtu`` files (:mod:`fem_reference.vtu`):
+The meshes are in the frame of the FEM's ``.vtu`` files (:mod:`fem_reference.fields.vtu`):
 x and y the global axes, Z = −depth, the reported body below its contact surface Z = 0.
 
 - ``step_NNNN_surface.vtu``: the grid cells as ``quad`` cells at Z = 0; cell data the

@@ -8,11 +8,11 @@ Probes, in this order (global frame, z = 0):
   ``[-r_c, r_c]`` at a spacing below h/20;
 - rays from the centre over the modelled sector (24 per quarter turn, the last angle of
   a quarter or half sector included), ``nline // 2 + 1`` radii each over ``[0, r_c]``:
-  the contact boundary r(θ) of :func:`fem_reference.contact_zone.ray_extent`.
+  the contact boundary r(θ) of :func:`fem_reference.fields.contact_zone.ray_extent`.
 
 A quarter or half model samples the mirror image of a probe in the modelled part; the
 reflection signs ``sx, sy`` (0 on a mirror plane) turn the components odd under the
-mirror (see :meth:`fem_reference.model.Symmetry.map`).
+mirror (see :meth:`fem_reference.model.fem_model.Symmetry.map`).
 """
 
 from __future__ import annotations
@@ -25,8 +25,8 @@ import scipy.sparse as sp
 
 from cases.model import Grid
 
-from .errors import FemError
-from .model import FemModel
+from ..errors import FemError
+from ..model.fem_model import FemModel
 
 RAYS_PER_QUARTER = 24
 LINE_DIVISIONS = 20.0  # line probes per element size h (at least)

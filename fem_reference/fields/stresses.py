@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.spatial import cKDTree
 
-from .elasticity import P2Space, p2_gradients, stress_from_gradient
+from ..model.elasticity import P2Space, p2_gradients, stress_from_gradient
 
 COMPONENTS = ("sxx", "syy", "szz", "sxy", "sxz", "syz")
 _PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
@@ -93,7 +93,7 @@ def sample_recovered(space: P2Space, locator: PointLocator, nodal: np.ndarray,
     raw P2 stresses (piecewise linear, discontinuous), whose zigzag otherwise decides
     where along a line the maximum of σ_VM falls.
     """
-    from .elasticity import p2_values
+    from ..model.elasticity import p2_values
 
     points = np.atleast_2d(points)
     pidx, elems, lam = locator.locate(points)
@@ -106,7 +106,7 @@ def sample_recovered(space: P2Space, locator: PointLocator, nodal: np.ndarray,
 def sample_displacement(space: P2Space, locator: PointLocator, u: np.ndarray,
                         points: np.ndarray) -> np.ndarray:
     """P2 displacement (n, 3) at ``points``."""
-    from .elasticity import p2_values
+    from ..model.elasticity import p2_values
 
     points = np.atleast_2d(points)
     pidx, elems, lam = locator.locate(points)

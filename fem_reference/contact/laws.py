@@ -1,4 +1,4 @@
-"""The node-wise contact laws of :mod:`fem_reference.contact` (its module doc gives the
+"""The node-wise contact laws of :mod:`fem_reference.contact.augmented` (its module doc gives the
 kinematics and the laws, Eqs. 1-2, 7-17, 21-23): the friction axes (Eq. 11), the law's
 parameters, the contact points, and the laws evaluated with their tangent."""
 
@@ -48,7 +48,7 @@ class Law:
 @dataclass
 class Points:
     """Contact evaluation points: the surface nodes (dual weights > 0, ``G`` giving the
-    modified coefficients, :mod:`fem_reference.nodal`) or probes (weights 0)."""
+    modified coefficients, :mod:`fem_reference.model.nodal_basis`) or probes (weights 0)."""
 
     G: sp.csr_matrix  # (3n, m): condensed DOFs -> [u_x; u_y; u_z]
     w: np.ndarray  # integration weights [mm²]

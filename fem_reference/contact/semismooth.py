@@ -1,6 +1,6 @@
 """Semi-smooth Newton solve of the nodal contact problem in the tractions.
 
-The laws of :mod:`fem_reference.contact` (Eqs. 7-17, 21-23) written, node by node, as
+The laws of :mod:`fem_reference.contact.augmented` (Eqs. 7-17, 21-23) written, node by node, as
 the zeros of the Alart–Curnier functions (Alart & Curnier 1991; Hüeber, Stadler &
 Wohlmuth 2008 for 3D Coulomb friction with dual bases), in the tractions
 ``λ = (λ_x, λ_y, λ_n)`` on body a:
@@ -15,13 +15,13 @@ radial projection onto the friction ellipse ``‖p_t‖_μ ≤ ρ`` (Eqs. 9,
 ``c_w`` the wear compliance of the step (Eq. 23).  A zero is the exact solution: an
 active point has no gap, a stick point has not slipped, a slipping one lies on the
 ellipse and slips along ``−𝕄⁻² p_t`` (the associated rule, Eq. 13) — the fixed point
-the augmented Lagrangian of :func:`fem_reference.contact.augmented` reaches, with no
+the augmented Lagrangian of :func:`fem_reference.contact.augmented.augmented` reaches, with no
 penalty: ``r`` and ``r_t`` set only the path of the iteration.
 
 The elastic response is the nodal compliance ``d = H W λ`` with ``H = G C Gᵀ`` (the
 condensed compliance seen from the nodes, :class:`NodalCompliance`), so the unknowns are
 the tractions of the active nodes and the control unknowns (δ, g_t,o) of
-:func:`fem_reference.contact.unknowns`.  Each iteration solves one dense system on the
+:func:`fem_reference.contact.augmented.unknowns`.  Each iteration solves one dense system on the
 active set (open nodes: ``λ = 0`` exactly), started from the previous state's tractions
 and so from its active sets.
 """
@@ -34,10 +34,10 @@ import numpy as np
 
 from cases.result import OPEN, SLIP, STICK
 
-from .contact import ContactConvergenceError, Control, Solution, unknowns
-from .contact_law import Evaluation, Law, Points, norm_with
+from .augmented import ContactConvergenceError, Control, Solution, unknowns
+from .compliance import NodalCompliance
 from .kept_factors import KeptFactors
-from .nodal_compliance import NodalCompliance
+from .laws import Evaluation, Law, Points, norm_with
 from .threads import blas_threads
 
 MAX_ITER = 100  # Newton iterations of one solve
@@ -74,12 +74,12 @@ def semismooth(op: NodalCompliance, law: Law, pts: Points, ctrl: Control, *,
     """Solve the contact under ``ctrl`` from the tractions ``pts.lam_n``, ``pts.t_old``
     (the last state's) by the semi-smooth Newton method of the module doc; on return
     ``pts.lam_n``, ``pts.t_old`` hold the solution's tractions (as after
-    :func:`fem_reference.contact.augmented`).  Converged when every function is below
+    :func:`fem_reference.contact.augmented.augmented`).  Converged when every function is below
     ``tol`` times the largest pressure (and the controls likewise) with the active sets
     of the last step unchanged; at most ``max_iter`` (default :data:`MAX_ITER`)
     iterations.  ``iterations``: Newton iterations.  ``kept``: the factors of the
     Newton systems (:class:`KeptFactors`), kept by the caller for the next solves.
-    Raises :class:`~fem_reference.contact.ContactConvergenceError` with the residual.
+    Raises :class:`~fem_reference.contact.augmented.ContactConvergenceError` with the residual.
     """
     with blas_threads(1):
         return _Solver(op, law, pts, ctrl, cw, tol, kept or KeptFactors()).run(

@@ -9,8 +9,8 @@ import time
 
 import numpy as np
 
+from ..errors import FemError
 from .elasticity import Factorization, P2Space, stiffness
-from .errors import FemError
 from .mesh import MeshSpec, block_mesh
 from .surface import ContactSurface
 

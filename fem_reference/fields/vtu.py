@@ -1,7 +1,7 @@
 """FE fields as VTK unstructured grids (``.vtu``) for ParaView, through meshio.
 
 The mesh is written with its quadratic tetrahedra (``tetra10``; the P2 node order of
-:mod:`fem_reference.elasticity` is VTK's) in the block frame of the reported body:
+:mod:`fem_reference.model.elasticity` is VTK's) in the block frame of the reported body:
 x and y the global axes, Z = −depth (the body lies below its contact surface Z = 0).
 Point data: ``displacement`` (3 components, mm), the stress components ``sxx, syy,
 szz, sxy, sxz, syz`` in that frame and ``von_mises`` (MPa), volume-averaged at the
@@ -18,7 +18,7 @@ import numpy as np
 
 from cases.result import atomic_path, von_mises
 
-from .elasticity import P2Space
+from ..model.elasticity import P2Space
 from .stresses import COMPONENTS, nodal_stresses
 
 _PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))

@@ -1,6 +1,6 @@
 """Subsurface stresses of the reported body: the xz and yz planes and the load axis.
 
-Samples the exact P2 element stresses (:func:`fem_reference.stresses.sample_stresses`)
+Samples the exact P2 element stresses (:func:`fem_reference.fields.stresses.sample_stresses`)
 in the reported frame (x, y, depth z) on the case's planes: ``xz`` at y = y0 over the
 grid x, ``yz`` at x = x0 over the grid y ((x0, y0) = ``case.plane_centre``), both at the
 depths ``stress.z``; and on the load axis (x0, y0) at 8x the plane resolution in depth,
@@ -22,7 +22,7 @@ import numpy as np
 
 from cases.result import Plane, von_mises
 
-from .model import BodyDisplacement, FemModel
+from ..model.fem_model import BodyDisplacement, FemModel
 from .stresses import COMPONENTS, PointLocator, sample_stresses
 
 AXIS_FIT_WINDOW = 0.3  # half-width of the axis σ_VM fit window, in contact semi-widths
@@ -42,7 +42,7 @@ def stress_at(model: FemModel, locator: PointLocator, u: BodyDisplacement, nu: f
     The mirror image of the symmetric solution keeps σ_xx, σ_yy, σ_zz, σ_xz and changes
     the sign of σ_xy, σ_yz (sign 0 on the mirror plane: they vanish there); the
     companion's (antisymmetric) image does the opposite, its σ_xx, σ_yy, σ_zz, σ_xz
-    vanishing on the plane (:mod:`fem_reference.model`)."""
+    vanishing on the plane (:mod:`fem_reference.model.fem_model`)."""
     mapped, sx, sy = model.sym.map(xyz[:, :2])
     pts = np.column_stack([mapped, -xyz[:, 2]])
     sig = sample_stresses(model.space, locator, u.sym, nu, E, pts)

@@ -28,7 +28,7 @@ carries it as a *companion* problem, the same half block with the mirror conditi
 swapped (u_x = u_z = 0 on Y = 0, u_y free), factorised once more but never condensed;
 the displacement of a body is the sum of the two solutions (:class:`BodyDisplacement`),
 and the companion's components change sign under the mirror where the symmetric
-solution's do not (``fem_reference.stress_planes``, ``fem_reference.output``).  Half the
+solution's do not (``fem_reference.fields.planes``, ``fem_reference.output``).  Half the
 DOFs of the full block: a third of its factorisation and condensation time.
 """
 
@@ -44,9 +44,9 @@ import scipy.linalg as la
 
 from cases.model import Case, CaseError
 
+from ..contact.laws import Law, axes_tensor, norm_with
+from ..errors import FemError, FemUnsupported
 from . import block
-from .contact_law import Law, axes_tensor, norm_with
-from .errors import FemError, FemUnsupported
 from .mesh import MeshSpec
 from .shape import (
     choose_shape,

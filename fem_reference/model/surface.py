@@ -5,7 +5,7 @@ the radius ``r_c`` of the load axis.  The traces of the P2 field on those facets
 triangles (3 vertex nodes and 3 edge nodes, order v0 v1 v2 e01 e12 e02).  Everything
 the contact solver needs is linear in the surface nodal values and is expressed by
 sparse interpolation matrices ``N`` (points x surface nodes): at the quadrature points
-(the integrals of the surface functions, :mod:`fem_reference.nodal`) and at arbitrary
+(the integrals of the surface functions, :mod:`fem_reference.model.nodal_basis`) and at arbitrary
 probe points (the case grid, lines through the centre), P2 or linear on the four
 sub-triangles of a facet.
 """

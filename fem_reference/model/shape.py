@@ -1,7 +1,7 @@
 """What a case asks of the FE model: its length unit, the sliding direction, the wear
 norms of the bodies (Eq. 21), the largest contact radius to mesh for, and the block's
 symmetry — a quarter, a half (with or without an antisymmetric companion, the module doc of
-:mod:`fem_reference.model`) or the full block."""
+:mod:`fem_reference.model.fem_model`) or the full block."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ import numpy as np
 
 from cases.model import Case
 
-from .contact_law import axes_tensor, norm_with
+from ..contact.laws import axes_tensor, norm_with
 
 
 def reference_length(case: Case) -> float:

@@ -1,4 +1,4 @@
-"""Kept LU factors of the semi-smooth Newton systems (:mod:`fem_reference.semismooth`),
+"""Kept LU factors of the semi-smooth Newton systems (:mod:`fem_reference.contact.semismooth`),
 preconditioning GMRES on the next systems."""
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ KRYLOV_RTOL = 1e-6
 
 class KeptFactors:
     """The LU factors of one Newton system
-    (:func:`fem_reference.semismooth.semismooth`), kept across iterations and solves. A
+    (:func:`fem_reference.contact.semismooth.semismooth`), kept across iterations and solves. A
     later system differs in the rows of the nodes whose state or slip direction changed
     and in the few nodes that came into or out of contact: GMRES, preconditioned by the
     kept factors (on the unknowns both systems share; a new unknown by its diagonal),

@@ -1,7 +1,7 @@
 """The linear solve of the contact Newton iteration: ``(K + B) x = r`` with ``K = C⁻¹``.
 
 ``C`` is the dense condensed compliance of the surface DOFs (symmetric), ``B`` the sparse
-tangent of the contact laws (:func:`fem_reference.contact_law.evaluate`), nonzero only on the
+tangent of the contact laws (:func:`fem_reference.contact.laws.evaluate`), nonzero only on the
 DOFs ``A`` touched by points in contact.  The push-through (Woodbury) identity
 
     (K + B)⁻¹ = C − C_{:A} M⁻¹ B_AA C_{A:},        M = I + B_AA C_AA,

@@ -20,7 +20,7 @@ import numpy as np
 import scipy.sparse as sp
 from skfem import MeshTet
 
-from .errors import FemError
+from ..errors import FemError
 
 # local edges of a tetrahedron, scikit-fem / VTK tetra10 order
 TET_EDGES = np.array([[0, 1], [1, 2], [0, 2], [0, 3], [1, 3], [2, 3]])

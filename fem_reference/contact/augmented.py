@@ -28,7 +28,7 @@ converged traction: the plain penalty method); :func:`augmented` updates the mul
 to the tractions until they no longer change (Alart & Curnier 1991, the Uzawa iteration
 of Eqs. 15-17), which makes the gap zero and a stick point fixed exactly, independently
 of the penalty.  The points are the surface nodes with dual weights
-(:mod:`fem_reference.nodal`): one condition per node.
+(:mod:`fem_reference.model.nodal_basis`): one condition per node.
 
 The elastic response is condensed onto the surface DOFs: ``u = C f`` with the nodal
 forces ``f = Gᵀ W t`` on body a, and the Newton iteration works on the dense stiffness
@@ -43,7 +43,7 @@ import numpy as np
 import scipy.linalg as la
 import scipy.sparse as sp
 
-from .contact_law import Evaluation, Law, Points, evaluate, weighted_blocks
+from .laws import Evaluation, Law, Points, evaluate, weighted_blocks
 from .stiffened import StiffenedSolver
 from .threads import blas_threads
 
@@ -61,7 +61,7 @@ class Control:
     ``D`` (rigid tangential displacement g_t,o) in that component.
     ``sym``: symmetry factor (4 quarter, 2 half, 1 full).
     ``approach``: under approach control with a far-field ``compliance`` c > 0 (the
-    block's missing compliance, :meth:`fem_reference.model.FemModel.far_compliance`)
+    block's missing compliance, :meth:`fem_reference.model.fem_model.FemModel.far_compliance`)
     the half-space approach: δ is then an unknown with the equation δ + c P = approach.
     ``shift``: likewise the half-space's rigid tangential displacement per component
     (None: ``D`` itself is prescribed) with the tangential ``compliance_t``: D_c + c_t Q_c
@@ -93,7 +93,7 @@ class Solution:
 def _solve_stiffened(C: np.ndarray, B: sp.spmatrix, rhs: np.ndarray,
                      lin: StiffenedSolver | None = None) -> np.ndarray:
     """Solve ``(K + B) x = rhs`` with ``K = C⁻¹`` (dense) and a sparse contact tangent B
-    by the push-through identity on the DOFs of B (:mod:`fem_reference.stiffened`);
+    by the push-through identity on the DOFs of B (:mod:`fem_reference.contact.stiffened`);
     ``lin`` keeps the factors for the next solves of the same contact problem."""
     return (lin if lin is not None else StiffenedSolver(C)).solve(B, rhs)
 
@@ -128,7 +128,7 @@ def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control
     since the last converged state, whatever the penalty: the penalty sets only the rate
     (each update shrinks the constraint violation by about the ratio of the surface
     stiffness to k_n).  ``iterations`` of the result: Newton iterations of every pass.
-    ``lin``: the linear solver of the Newton steps (:mod:`fem_reference.stiffened`) on
+    ``lin``: the linear solver of the Newton steps (:mod:`fem_reference.contact.stiffened`) on
     ``C``, kept by the caller to reuse its factors in the next solves (default: a new
     one for this solve).
     """

@@ -1,6 +1,6 @@
 """The nodal compliance of the contact points: the condensed compliance seen from the
 nodes, the elastic operator of the semi-smooth contact solve
-(:mod:`fem_reference.semismooth`)."""
+(:mod:`fem_reference.contact.semismooth`)."""
 
 from __future__ import annotations
 

@@ -1,0 +1,7 @@
+"""The contact solve on the condensed surface: the friction and wear laws at the nodes
+(:mod:`.laws`), the semi-smooth Newton solve (:mod:`.semismooth`, the default) and the
+augmented Lagrangian on a penalty Newton solve (:mod:`.augmented`), the nodal compliance
+(:mod:`.compliance`), the kept factors and their low-rank updates (:mod:`.kept_factors`,
+:mod:`.stiffened`) and the single-threaded BLAS they run under (:mod:`.threads`).
+
+The ground room of the package: it imports no other room."""

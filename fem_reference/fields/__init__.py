@@ -1,0 +1,6 @@
+"""What is read off a solved model: the sample points and probes (:mod:`.sampling`), the
+contact zone (:mod:`.contact_zone`), stresses recovered from the P2 elements
+(:mod:`.stresses`), the subsurface stress planes (:mod:`.planes`) and the ``.vtu`` files
+(:mod:`.vtu`).
+
+Imports :mod:`fem_reference.model`, never :mod:`fem_reference.contact`."""
