@@ -48,6 +48,24 @@ def von_mises(sxx, syy, szz, sxy, sxz, syz):
     )
 
 
+def semi_widths(x: np.ndarray, y: np.ndarray, p_n: np.ndarray) -> tuple[float, float]:
+    """``(a_x, a_y)`` [mm]: half the extent of the contact (the cells with ``p_n > 0``)
+    along x and along y, each cell counted with its width — the contact's own semi-axes,
+    wherever its centre and the stress planes lie (``cases/README.md``, ``a_x``).  On a
+    regular grid of spacing h the value moves in steps of h/2 and lies within h/2 of the
+    semi-axis of the discrete contact; 0 without contact."""
+    pressed = p_n > 0
+    if not pressed.any():
+        return 0.0, 0.0
+
+    def half_extent(coord: np.ndarray, along: np.ndarray) -> float:
+        c = coord[along]
+        width = float(coord[1] - coord[0]) if coord.size > 1 else 0.0
+        return 0.5 * float(c.max() - c.min() + width)
+
+    return half_extent(x, pressed.any(axis=1)), half_extent(y, pressed.any(axis=0))
+
+
 @dataclass
 class Plane:
     """A subsurface plane: coordinate s along the plane, depth z, stress components."""

@@ -6,26 +6,12 @@ from __future__ import annotations
 import numpy as np
 
 from cases.model import Case
-from cases.result import SLIP, STICK, StepResult, vm_max_location
+from cases.result import SLIP, STICK, StepResult, semi_widths, vm_max_location
 
 from .contact import StepSolution
 from .stresses import StressEvaluator
 
 SOLVER_NAME = "ic"
-
-
-def semi_widths(case: Case, p_n: np.ndarray) -> tuple[float, float]:
-    """Contact semi-widths along x and y through the cells nearest the planes' centre."""
-    g = case.grid
-    i0, j0 = g.nearest_cell(case.stress.x0, case.stress.y0)
-
-    def half_extent(coord, mask, d):
-        if not mask.any():
-            return 0.0
-        c = coord[mask]
-        return 0.5 * (c.max() - c.min() + d)
-
-    return half_extent(g.x, p_n[:, j0] > 0, g.dx), half_extent(g.y, p_n[i0, :] > 0, g.dy)
 
 
 def step_result(case: Case, sol: StepSolution, stresses: StressEvaluator, *, step: int,
@@ -38,7 +24,7 @@ def step_result(case: Case, sol: StepSolution, stresses: StressEvaluator, *, ste
     planes = stresses.planes(st.p_x, st.p_y, st.p_n, case.stress.x0, case.stress.y0)
     x_plane, y_plane = stresses.plane_centre(case.stress.x0, case.stress.y0)
     vm, vx, vy, z_at = vm_max_location(planes, x_plane, y_plane)
-    a_x, a_y = semi_widths(case, st.p_n)
+    a_x, a_y = semi_widths(g.x, g.y, st.p_n)
     wear = wear_a + wear_b
     scalars = dict(
         step=step, s=s, cycle=cycle, P=sol.P, Qx=sol.Qx, Qy=sol.Qy,

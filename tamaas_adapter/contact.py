@@ -29,7 +29,7 @@ from collections.abc import Callable, Iterator
 import numpy as np
 
 from cases.model import Case
-from cases.result import RunResult, StepResult, vm_max_location
+from cases.result import RunResult, StepResult, semi_widths, vm_max_location
 
 from . import volume
 
@@ -117,11 +117,6 @@ def tractions(case: Case, periodic: bool) -> tuple[np.ndarray, np.ndarray, np.nd
     return np.zeros_like(p_n), np.zeros_like(p_n), p_n
 
 
-def _semi_width(coord: np.ndarray, pressed: np.ndarray, d: float) -> float:
-    c = coord[pressed]
-    return 0.5 * (c.max() - c.min() + d) if c.size else 0.0
-
-
 def run(case: Case, *, periodic: bool,
         on_output: Callable[[StepResult], None] | None = None) -> RunResult:
     """One output step of ``case`` by Tamaas (module doc)."""
@@ -133,10 +128,11 @@ def run(case: Case, *, periodic: bool,
     x0, y0 = float(g.x[i0]), float(g.y[j0])
     vm, vx, vy, vz = vm_max_location(planes, x0, y0)
     dA = g.dx * g.dy
+    a_x, a_y = semi_widths(g.x, g.y, p_n)
     scalars = {
         "step": 0, "P": float(p_n.sum() * dA), "Qx": float(p_x.sum() * dA),
         "Qy": float(p_y.sum() * dA), "contact_area": float(np.count_nonzero(p_n > 0) * dA),
-        "a_x": _semi_width(g.x, p_n[:, j0] > 0, g.dx), "a_y": _semi_width(g.y, p_n[i0] > 0, g.dy),
+        "a_x": a_x, "a_y": a_y,
         "p_max": float(p_n.max()), "vm_max": vm, "vm_max_x": vx, "vm_max_y": vy,
         "vm_max_z": vz, "x0": x0, "y0": y0, "wall_s": time.perf_counter() - t0,
     }

@@ -10,11 +10,14 @@ user's) with only physics, a grid and the stress planes: no ``[tolerances]``, no
   oblique tangential load, full sliding in any direction with isotropic or orthotropic
   friction, the worn pin (Argatov's asymptotic solution) with and without friction, and
   the first fretting cycle (Mindlin–Deresiewicz) under a held approach;
-- R 5–200 mm, P 1–300 N (log-uniform), E 70–400 GPa, ν 0–0.45, μ 0.05–0.8 (sliding) or
-  0.1–0.8, Q/(μP) 0.1–0.9, fretting amplitude 0.2–3 δ*, worn contact radius 1.5–3 a0;
+- R 5–200 mm, P 1–300 N (log-uniform), E 70–400 GPa, ν −0.3–0.45, μ 0.05–0.8 (sliding)
+  or 0.1–0.8, Q/(μP) 0.1–0.9, fretting amplitude 0.2–3 δ*, worn contact radius 1.5–3 a0;
 - the grid: 3.5–10 cells per contact radius (the worn radius for a pin), its half-width
-  1.3–2.2 contact radii, at most 81 cells a side (odd or even counts); the stress planes
-  1.5 contact radii deep with 11–31 layers.
+  1.3–2.2 contact radii, at most 81 cells a side (odd or even counts), square or
+  rectangular (``Ly``, ``ny`` drawn alike: rectangular cells); the stress planes 1.5
+  contact radii deep with 11–31 layers, through the centre or through (x0, y0) up to 0.8
+  contact radii off it, in body b or body a; the static contacts solved by the CG
+  method or by Uzawa's.
 """
 
 from __future__ import annotations
@@ -43,10 +46,10 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
     kind = draw(st.sampled_from(kinds))
     R = draw(_log_uniform(5.0, 200.0))
     P = draw(_log_uniform(1.0, 300.0))
-    mat_a = (draw(st.floats(70e3, 400e3)), draw(st.floats(0.0, 0.45)))
+    mat_a = (draw(st.floats(70e3, 400e3)), draw(st.floats(-0.3, 0.45)))
     mat_b = mat_a
     if kind == "dissimilar":
-        mat_b = (draw(st.floats(70e3, 400e3)), draw(st.floats(0.0, 0.45)))
+        mat_b = (draw(st.floats(70e3, 400e3)), draw(st.floats(-0.3, 0.45)))
     a0 = hertz_radius(R, P, mat_a, mat_b)
     body_a = body_b = ""
     friction, load, extra = "", f"P = {P!r}\n", ""
@@ -97,8 +100,21 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
     cells = draw(st.floats(3.5, 10.0))  # cells per contact radius
     L = 2.0 * reach * draw(st.floats(1.3, 2.2))
     n = max(min(round(L / (a0 / cells)), 81), 9)
+    grid = f"Lx = {L!r}\nnx = {n}\n"
+    if draw(st.booleans()):  # a rectangular grid, its cells rectangular too
+        Ly = 2.0 * reach * draw(st.floats(1.3, 2.2))
+        ny = max(min(round(Ly / (a0 / draw(st.floats(3.5, 10.0)))), 81), 9)
+        grid += f"Ly = {Ly!r}\nny = {ny}\n"
     nz = draw(st.integers(11, 31))
+    stress = f"depth = {1.5 * reach!r}\nnz = {nz}\n"
+    if draw(st.booleans()):  # the planes off the centre, inside the contact
+        x0, y0 = (draw(st.floats(-0.8, 0.8)) * reach for _ in range(2))
+        stress += f"x0 = {x0!r}\ny0 = {y0!r}\n"
+    if draw(st.booleans()):
+        stress += 'body = "a"\n'
+    if kind in ("hertz", "dissimilar", "partial_slip") and draw(st.booleans()):
+        extra += '[solver]\nmethod = "uzawa"\n'
     return (top + f"[materials.a]\nE = {mat_a[0]!r}\nnu = {mat_a[1]!r}\n{body_a}"
             f"[materials.b]\nE = {mat_b[0]!r}\nnu = {mat_b[1]!r}\n{body_b}"
-            f"[geometry]\nR = {R!r}\n[grid]\nLx = {L!r}\nnx = {n}\n{friction}"
-            f"[load]\n{load}{extra}[stress]\ndepth = {1.5 * reach!r}\nnz = {nz}\n")
+            f"[geometry]\nR = {R!r}\n[grid]\n{grid}{friction}"
+            f"[load]\n{load}{extra}[stress]\n{stress}")

@@ -14,7 +14,7 @@ wear_volume,                          maximum over the planes off the edge band,
 vm_max,                               ``vm_max_below`` the one at depth z ≥ z_below, its
 vm_max_below                          companion where ``vm_max`` lies near the surface
                                       (:mod:`reports.compare.maxima`)
-a_x, a_y          cells               contact semi-widths through the centre
+a_x, a_y          cells               contact semi-widths (half the contact's extent)
 contact_area,     cells               equivalent radius √(A/π) of the contact / stick zone
 stick_area
 vm_max_loc        cells, a0           distance from each σ_VM maximum to the other
