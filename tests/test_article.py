@@ -143,6 +143,19 @@ def test_seeded_changes_move_verdicts(quick, monkeypatch):
     monkeypatch.undo()
 
 
+def test_verdicts_do_not_depend_on_an_installed_plugin(quick):
+    """A plugin installed beside the built-in solvers is listed first in every manifest
+    (the registry puts plugins first); one that declined every point has no rows.  The
+    claims pick their solvers by role, so the verdicts are those of the run without it
+    (at bf2adeb claim 5 read "no sliding-sphere results")."""
+    out, _ = quick
+    article = collect(out, True, ALL)
+    for case in article.cases.values():
+        if case is not None:
+            case.manifest["solvers"] = ["a_plugin_that_declines", *case.manifest["solvers"]]
+    assert {k: f.verdict for k, f in judge(article, ALL).items()} == QUICK
+
+
 @pytest.mark.skipif(CHROMIUM is None, reason="headless Chromium is not installed")
 def test_renders_in_headless_chromium(quick, tmp_path):
     out, _ = quick

@@ -91,7 +91,7 @@ half-space solver against Mindlin–Deresiewicz on the bundled ``fretting_isotro
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterable
 from dataclasses import replace
 
 from cases.model import Case, CaseError
@@ -274,6 +274,16 @@ def exact_pair(pair: str) -> bool:
 def names() -> list[str]:
     """All registered solver names, in registry order."""
     return list(REGISTRY)
+
+
+def by_role(names: Iterable[str]) -> list[str]:
+    """``names`` with the built-in solvers first, in their roles' order (the solver under
+    test, the FEM, the closed forms, the metamorphic relations), then every other
+    (plugins, names of another version) by name: an order that does not depend on what
+    is installed, for whatever picks a solver of a case's results."""
+    builtin = [n for n in REGISTRY if n not in PLUGINS]
+    rank = {n: i for i, n in enumerate(builtin)}
+    return sorted(dict.fromkeys(names), key=lambda n: (n not in rank, rank.get(n, 0), n))
 
 
 def record(name: str) -> SolverRecord:

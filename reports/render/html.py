@@ -10,6 +10,7 @@ from pathlib import Path
 import pandas as pd
 
 from cases.result import atomic_write_text
+from reports.registry import solvers as registry
 from reports.registry.errors import UserError
 from reports.registry.tolerances import GATED
 from reports.render import plots
@@ -107,7 +108,7 @@ def _fields(case: CaseResults, param: str, scales: dict[str, tuple[float, float]
     a0, p0 = scales.get(param, (math.nan, math.nan))
     if not (math.isfinite(a0) and math.isfinite(p0)):
         return []
-    solvers = list(case.manifest.get("solvers", []))
+    solvers = registry.by_role(case.manifest.get("solvers", []))
     history = {sv: case.steps(sv, param) for sv in solvers}
     history = {sv: h for sv, h in history.items() if h}
     if not history:

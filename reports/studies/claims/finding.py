@@ -106,7 +106,12 @@ class Article:
         return float(point["hertz_a0"]), float(point["hertz_p0"])
 
     def solvers(self, source: str) -> list[str]:
-        return list(self.case(source).manifest.get("solvers", []))
+        """The solvers with results in a source, by role (:func:`reports.registry.solvers.
+        by_role`): a plugin that declined every point, or one installed beside them, never
+        takes a built-in solver's place."""
+        case = self.case(source)
+        ran = set(case.summary["solver"]) if "solver" in case.summary else set()
+        return solvers.by_role(s for s in case.manifest.get("solvers", []) if s in ran)
 
 
 class MissingSource(LookupError):

@@ -146,9 +146,10 @@ def friction_trend(art: Article) -> Finding:
     src = "sliding"
     series: dict[str, dict] = {"vm": {}, "x": {}, "z": {}}
     parts = []
-    first = art.rows(src, art.base_solvers(src)[0]) if art.base_solvers(src) else None
-    if first is None or first.empty:
+    ran = art.base_solvers(src)
+    if not ran:
         return undecided("no sliding-sphere results")
+    first = art.rows(src, ran[0])
     mus = np.array(sorted(first["value"].unique()))
     nu = float(art.case(src).point(first["param"].iloc[0])["a"]["nu"])
     exact = np.array([closed_form("sliding_vm_max")(mu, nu) for mu in mus])
