@@ -1,0 +1,279 @@
+"""The gate's self-test by injection, driven by the registry: for every row kind the
+comparisons can write (each (quantity, metric) of
+:data:`reports.registry.tolerances.QUANTITY_METRICS`), a correct result — the closed form
+of a case that gates that row — is perturbed so that the row's metric reads exactly ``k``
+times its tolerance, and the verdict must follow: at k = 1.03 and 1.5 the row fails, at
+k = 0.5 and 0.97 it passes (the flip sits at the tolerance, so a pass rule with a grace
+of a few per cent fails here too), and at every k no other row fails.  Each tolerance source is covered: the pair's default (the sum
+of the two solvers' error budgets), a key of the case file, and a pair-specific key of
+the case file (set to half the default, so that a lookup that ignored it would pass);
+and each pair kind of a built-in reference: a closed form, and another solver.
+
+The perturbations are calibrated from the documented definitions
+(``reports/registry/tolerances.py``), not from the comparison code: a field scaled by
+1 + ε has a relative L2 error ε; a dip of ε times the reference's peak at one interior
+point has a relative max error ε; a scalar scaled by 1 + ε has a relative error ε; a
+length moved by ε cells is ε cells off; a loop moved by ε μP at every point is ε off.  A
+quantity added to the registry without an injection here fails
+:func:`test_every_row_kind_is_injected`.
+
+Some injections necessarily move another row too (a σ_VM plane scaled moves its
+maximum, whose tolerance is tighter than the plane's): ``ALSO`` lists them with the
+reason; only those may fail beside the injected row.  The locations of the σ_VM maximum have no calibrated injection (moving a
+maximum without changing it is not a one-parameter change); their defects are in
+``tests/test_gate_selftest.py`` (the maximum moved by a contact radius, by four cells).
+"""
+
+from __future__ import annotations
+
+import copy
+import math
+from collections.abc import Callable
+
+import numpy as np
+import pytest
+from test_gate_selftest import FRETTING_CASE, SLIDING_CASE, SLIP_CASE, reference
+
+from cases.model import Case
+from cases.result import RunResult, StepResult
+from reports.compare.point import compare_point
+from reports.registry import solvers
+from reports.registry.tolerances import QUANTITY_METRICS, tolerance_key
+
+#: every row kind the registry can write
+ROW_KINDS = sorted((q, m) for q, ms in QUANTITY_METRICS.items() for m in ms)
+#: row kinds without a calibrated injection, and where their defects are tested
+UNCALIBRATED = {("vm_max_loc", "cells"): "test_gate_selftest: maximum moved",
+                ("vm_max_loc", "a0"): "test_gate_selftest: maximum moved"}
+
+Inject = Callable[[Case, RunResult, float, str], None]  # case, result, ε, pair
+
+
+def _last(result: RunResult) -> StepResult:
+    return result.steps[-1]
+
+
+def _centre(step: StepResult) -> tuple[int, int]:
+    return int(np.argmin(np.abs(step.x))), int(np.argmin(np.abs(step.y)))
+
+
+def scale_field(name: str) -> Inject:
+    """``name`` times 1 + ε: relative L2 error ε (the reference normalises itself)."""
+    def apply(case: Case, result: RunResult, eps: float, pair: str) -> None:
+        st = _last(result)
+        st.surface[name] = st.surface[name] * (1.0 + eps)
+    return apply
+
+
+def cross_traction(case: Case, result: RunResult, eps: float, pair: str) -> None:
+    """p_y += ε p_x where p_y is zero: relative L2 error ε of p_y against |p_t| = |p_x|."""
+    st = _last(result)
+    assert not np.any(st.surface["p_y"])
+    st.surface["p_y"] = st.surface["p_y"] + eps * st.surface["p_x"]
+
+
+def dip_field(name: str, at: str = "centre") -> Inject:
+    """One sample of ``name`` lowered by ε × the peak of the reference's norm field (|p_t|
+    for a traction component): relative max error ε.  At the centre (inside the contact
+    and the stick zone, off every band), or, for p_y, at the peak of |p_x|."""
+    def apply(case: Case, result: RunResult, eps: float, pair: str) -> None:
+        st = _last(result)
+        s = st.surface
+        norm = np.hypot(s["p_x"], s["p_y"]) if name in ("p_x", "p_y") else np.abs(s[name])
+        i, j = _centre(st)
+        field = s[name].copy()
+        field[i, j] -= eps * float(norm.max())
+        s[name] = field
+    return apply
+
+
+def scale_plane(name: str) -> Inject:
+    """σ_VM on one plane times 1 + ε: relative L2 error ε."""
+    def apply(case: Case, result: RunResult, eps: float, pair: str) -> None:
+        plane = _last(result).planes[name]
+        plane.fields["vm"] = plane.fields["vm"] * (1.0 + eps)
+    return apply
+
+
+def dip_plane(name: str) -> Inject:
+    """σ_VM lowered by ε × its peak at one point of the plane under the centre, 0.9 a
+    deep (inside the contact's neighbourhood, off the edge and stick bands, away from the
+    maximum): relative max error ε."""
+    def apply(case: Case, result: RunResult, eps: float, pair: str) -> None:
+        st = _last(result)
+        plane = st.planes[name]
+        vm = plane.fields["vm"].copy()
+        i = int(np.argmin(np.abs(plane.s)))
+        k = int(np.argmin(np.abs(plane.z - 0.9 * st.scalars["a_x"])))
+        vm[i, k] -= eps * float(vm.max())
+        plane.fields["vm"] = vm
+    return apply
+
+
+def raise_maximum(z_from: Callable[[Case, StepResult], float] | None = None) -> Inject:
+    """The σ_VM maximum over both planes (at depths ≥ ``z_from``) times 1 + ε, at its own
+    point(s): the maximum's relative error ε, its location unchanged."""
+    def apply(case: Case, result: RunResult, eps: float, pair: str) -> None:
+        st = _last(result)
+        depth = -math.inf if z_from is None else z_from(case, st)
+        top = max(float(p.fields["vm"][:, p.z >= depth].max()) for p in st.planes.values())
+        for p in st.planes.values():
+            vm = p.fields["vm"].copy()
+            at = (vm == top) & (p.z >= depth)[None, :]
+            vm[at] *= 1.0 + eps
+            p.fields["vm"] = vm
+    return apply
+
+
+def below_depth(case: Case, st: StepResult) -> float:
+    """The depth of the companion of a near-surface maximum (tolerances module doc: a
+    quarter of the contact radius, two cells at least)."""
+    hz = float(np.diff(st.planes["xz"].z).max())
+    cells = (float(np.diff(st.x).max()), float(np.diff(st.y).max()), hz)
+    return max(0.25 * st.scalars["a_x"], 2.0 * max(cells))
+
+
+def scale_scalar(name: str) -> Inject:
+    def apply(case: Case, result: RunResult, eps: float, pair: str) -> None:
+        _last(result).scalars[name] *= 1.0 + eps
+    return apply
+
+
+def _cell(case: Case, pair: str, axis: str) -> float:
+    """The unit of ``cells``: the coarser of the sample spacing and each solver's own
+    cell (tolerances module doc)."""
+    g = case.grid
+    h = {"x": g.dx, "y": g.dy, "xy": max(g.dx, g.dy)}[axis]
+    return max([h] + [solvers.record(s).cell_size(case) for s in pair.split("-")])
+
+
+def move_length(name: str, axis: str) -> Inject:
+    """A semi-width ε cells longer."""
+    def apply(case: Case, result: RunResult, eps: float, pair: str) -> None:
+        _last(result).scalars[name] += eps * _cell(case, pair, axis)
+    return apply
+
+
+def grow_area(name: str) -> Inject:
+    """An area whose equivalent radius √(A/π) is ε cells longer."""
+    def apply(case: Case, result: RunResult, eps: float, pair: str) -> None:
+        sc = _last(result).scalars
+        r = math.sqrt(sc[name] / math.pi) + eps * _cell(case, pair, "xy")
+        sc[name] = math.pi * r * r
+    return apply
+
+
+def move_loop(case: Case, result: RunResult, eps: float, pair: str) -> None:
+    """The loop's Qx moved by ε μP at every point, μP computed here from the case: μ of
+    the isotropic friction and Hertz's load 2π a0² p0 / 3."""
+    a0, p0 = case.hertz_scales
+    mu_P = case.friction.mu1 * 2.0 * math.pi * a0 * a0 * p0 / 3.0
+    loops = result.tables["loops"]
+    loops["Qx"] = np.asarray(loops["Qx"], float) + eps * mu_P
+
+
+def scale_energy(case: Case, result: RunResult, eps: float, pair: str) -> None:
+    cycles = result.tables["cycles"]
+    cycles["energy"] = np.asarray(cycles["energy"], float) * (1.0 + eps)
+
+
+#: row kind -> (the case whose closed form gates it, the injection)
+INJECT: dict[tuple[str, str], tuple[Case, Inject]] = {
+    ("p_n", "l2"): (SLIP_CASE, scale_field("p_n")),
+    ("p_n", "max"): (SLIP_CASE, dip_field("p_n")),
+    ("p_x", "l2"): (SLIP_CASE, scale_field("p_x")),
+    ("p_x", "max"): (SLIP_CASE, dip_field("p_x")),
+    ("p_y", "l2"): (SLIP_CASE, cross_traction),
+    ("wear_a", "l2"): (FRETTING_CASE, scale_field("wear_a")),
+    ("wear_a", "max"): (FRETTING_CASE, dip_field("wear_a")),
+    ("wear_b", "l2"): (FRETTING_CASE, scale_field("wear_b")),
+    ("wear_b", "max"): (FRETTING_CASE, dip_field("wear_b")),
+    ("vm_xz", "l2"): (SLIP_CASE, scale_plane("xz")),
+    ("vm_xz", "max"): (SLIP_CASE, dip_plane("xz")),
+    ("vm_yz", "l2"): (SLIP_CASE, scale_plane("yz")),
+    ("vm_yz", "max"): (SLIP_CASE, dip_plane("yz")),
+    ("p_max", "rel"): (SLIP_CASE, scale_scalar("p_max")),
+    ("w_max", "rel"): (FRETTING_CASE, scale_scalar("w_max")),
+    ("wear_volume", "rel"): (FRETTING_CASE, scale_scalar("wear_volume")),
+    ("vm_max", "rel"): (SLIP_CASE, raise_maximum()),
+    ("vm_max_below", "rel"): (SLIDING_CASE, raise_maximum(below_depth)),
+    ("a_x", "cells"): (SLIP_CASE, move_length("a_x", "x")),
+    ("a_y", "cells"): (SLIP_CASE, move_length("a_y", "y")),
+    ("contact_area", "cells"): (SLIP_CASE, grow_area("contact_area")),
+    ("stick_area", "cells"): (SLIP_CASE, grow_area("stick_area")),
+    ("loop_q", "max"): (FRETTING_CASE, move_loop),
+    ("energy", "rel"): (FRETTING_CASE, scale_energy),
+}
+#: p_y's max: p_y is zero in every closed form here, so its dip is the same injection as
+#: p_x's at the peak of |p_t|, written into p_y
+INJECT[("p_y", "max")] = (SLIP_CASE, dip_field("p_y"))
+
+#: rows an injection necessarily moves besides its own, and why
+ALSO: dict[tuple[str, str], set[tuple[str, str]]] = {
+    # a field scaled by 1 + ε: its max error is ε as well
+    **{(q, "l2"): {(q, "max")} for q in ("p_n", "p_x", "wear_a", "wear_b")},
+    ("p_y", "l2"): {("p_y", "max")},
+    # a plane scaled: its max error, and the maximum it holds
+    **{(q, "l2"): {(q, "max"), ("vm_max", "rel"), ("vm_max_below", "rel")}
+       for q in ("vm_xz", "vm_yz")},
+}
+
+#: the pair under test, by kind of reference: the closed form's result is also relabelled
+#: as another solver's
+PAIR_KINDS = {"closed form": "ic-analytic", "other solver": "ic-fem"}
+SOURCES = ("default", "case key", "pair key")
+
+
+def test_every_row_kind_is_injected():
+    """The registry's row kinds are exactly those injected here or listed uncalibrated:
+    a quantity added later without an injection fails."""
+    assert sorted(set(INJECT) | set(UNCALIBRATED)) == ROW_KINDS
+    assert not set(INJECT) & set(UNCALIBRATED)
+
+
+def _expected_tolerance(case: Case, pair: str, quantity: str, metric: str) -> float:
+    """The pair's default (tolerances module doc): the sum of the two solvers' budgets
+    and their terms for the kind of case."""
+    return sum(solvers.record(s).budget(quantity, metric)
+               + solvers.record(s).case_term(case, quantity, metric) for s in pair.split("-"))
+
+
+def _rows(case: Case, pair: str, tested: RunResult, good: RunResult) -> dict:
+    a, _, b = pair.partition("-")
+    metrics = compare_point(case, {a: tested, b: good})
+    metrics = metrics[metrics["pair"] == pair]
+    return {(q, m): (float(v), float(t), s, bool(p)) for q, m, v, t, s, p in zip(
+        metrics["quantity"], metrics["metric"], metrics["value"], metrics["tolerance"],
+        metrics["status"], metrics["passed"], strict=True)}
+
+
+INJECTED = [k for k in ROW_KINDS if k in INJECT]
+
+
+@pytest.mark.parametrize("kind", INJECTED, ids=[f"{q}.{m}" for q, m in INJECTED])
+@pytest.mark.parametrize("source", SOURCES)
+@pytest.mark.parametrize("pair_kind", sorted(PAIR_KINDS))
+def test_the_verdict_flips_at_the_tolerance(kind, source, pair_kind):
+    pair = PAIR_KINDS[pair_kind]
+    quantity, metric = kind
+    case, inject = INJECT[kind]
+    tol = _expected_tolerance(case, pair, quantity, metric)
+    if source != "default":
+        tol *= 0.5
+        key = tolerance_key(quantity, metric)
+        key = key if source == "case key" else f"{pair}.{key}"
+        case = case.with_changes(tolerances={key: tol})
+    good = reference(INJECT[kind][0])
+    for k in (0.5, 0.97, 1.03, 1.5):
+        tested = copy.deepcopy(good)
+        inject(case, tested, k * tol, pair)
+        rows = _rows(case, pair, tested, good)
+        assert kind in rows, f"{kind}: no row for {pair}"
+        value, row_tol, status, passed = rows[kind]
+        assert status == "gated", f"{kind}: {status}"
+        assert row_tol == pytest.approx(tol, rel=1e-12), f"{kind}: tolerance {row_tol}"
+        assert value == pytest.approx(k * tol, rel=1e-6), f"{kind}: value {value} at k = {k}"
+        assert passed == (k < 1), f"{kind} at k = {k}: passed = {passed}"
+        failed = {key for key, (_, _, st, ok) in rows.items() if st == "gated" and not ok}
+        others = failed - {kind} - ALSO.get(kind, set())
+        assert others == set(), f"{kind} at k = {k} also fails {sorted(others)}"
