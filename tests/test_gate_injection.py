@@ -4,10 +4,11 @@ comparisons can write (each (quantity, metric) of
 of a case that gates that row — is perturbed so that the row's metric reads exactly ``k``
 times its tolerance, and the verdict must follow: at k = 1.03 and 1.5 the row fails, at
 k = 0.5 and 0.97 it passes (the flip sits at the tolerance, so a pass rule with a grace
-of a few per cent fails here too), and at every k no other row fails.  Each tolerance source is covered: the pair's default (the sum
-of the two solvers' error budgets), a key of the case file, and a pair-specific key of
-the case file (set to half the default, so that a lookup that ignored it would pass);
-and each pair kind of a built-in reference: a closed form, and another solver.
+of a few per cent fails here too), and at every k no other row fails.  Each tolerance
+source is covered: the pair's default (the sum of the two solvers' error budgets), a key
+of the case file, and a pair-specific key of the case file (set to half the default, so
+that a lookup that ignored it would pass); and each pair kind of a built-in reference: a
+closed form, and another solver.
 
 The perturbations are calibrated from the documented definitions
 (``reports/registry/tolerances.py``), not from the comparison code: a field scaled by
@@ -19,8 +20,9 @@ quantity added to the registry without an injection here fails
 
 Some injections necessarily move another row too (a σ_VM plane scaled moves its
 maximum, whose tolerance is tighter than the plane's): ``ALSO`` lists them with the
-reason; only those may fail beside the injected row.  The locations of the σ_VM maximum have no calibrated injection (moving a
-maximum without changing it is not a one-parameter change); their defects are in
+reason; only those may fail beside the injected row.  The locations of the σ_VM maximum
+have no calibrated injection (moving a maximum without changing it is not a
+one-parameter change); their defects are in
 ``tests/test_gate_selftest.py`` (the maximum moved by a contact radius, by four cells).
 """
 
