@@ -152,3 +152,18 @@ def test_a_resolution_below_the_float_spacing_ends(tmp_path, capsys, resolution)
     assert row["status"].startswith("bisected")
     assert float(row["hi"]) == np.nextafter(float(row["lo"]), 1.0)
     assert row["evaluations"] <= 2 + 60
+
+
+def test_no_named_solver_can_say_is_refused(tmp_path, capsys):
+    """Named solvers none of which can locate the event on the case (a closed form with
+    scalars only, for a σ_VM event): exit 2 naming each one's reason and nothing written,
+    as ``run`` refuses a case none of its solvers runs (at bf2adeb: exit 0, a table of
+    ``n/a``)."""
+    out = tmp_path / "res"
+    assert main(["threshold", "spence", "--param", "friction.mu", "--event",
+                 "vm_max_on_surface", "--range", "0.1", "0.6", "--quick", "--no-progress",
+                 "--solver", "analytic", "--out", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert "none of the solvers analytic can locate vm_max_on_surface" in err
+    assert "analytic: n/a: the result has no σ_VM plane" in err
+    assert not (out / "thresholds.csv").exists()

@@ -199,4 +199,24 @@ def test_a_default_run_compares_every_point_of_every_bundled_case(quick):
     assert "ic+mirror" in plan.solvers
     assert any("its exact relation ic+mirror runs too" in w for w in plan.warnings) != quick
     alone = plan_case("fretting_orthotropic", ["ic"], quick=quick, explicit=True)
-    assert alone.solvers == ["ic"]  # asked for one solver: no partner (the gate says so)
+    # one named solver that nothing compares: its exact relation runs too, as by default
+    assert alone.solvers == ["ic", "ic+mirror"]
+    assert any("its exact relation ic+mirror runs too" in w for w in alone.warnings)
+
+
+def test_nothing_compared_names_a_solver_set_that_would_compare(tmp_path, capsys):
+    """A frictional partial slip of a dissimilar pair run with ``--solver ic,analytic``:
+    no closed form, no exact relation (isotropic laws).  The NO METRICS line names a set
+    that would compare it, the FEM beside ic, and why the closed form declined — not the
+    command that was run (as at bf2adeb)."""
+    text = ('kind = "static"\n[materials.a]\nE = 210000.0\nnu = 0.3\n[materials.b]\n'
+            "E = 70000.0\nnu = 0.33\n[geometry]\nR = 20.0\n[grid]\nLx = 0.6\nnx = 31\n"
+            "[friction]\nmu = 0.3\n[load]\nP = 5.0\nQx = 0.5\n[stress]\ndepth = 0.2\nnz = 11\n")
+    (tmp_path / "c.toml").write_text(text)
+    code, err = _answer(["run", str(tmp_path / "c.toml"), "--solver", "ic,analytic",
+                         "--no-progress", "--out", str(tmp_path / "o")], capsys)
+    assert code == 0, err
+    code, err = _answer(["gate", "--out", str(tmp_path / "o")], capsys)
+    assert code == 1
+    assert "e.g. --solver ic,fem; analytic declined: no closed-form solution" in err
+    assert "--solver ic,analytic" not in err

@@ -286,6 +286,15 @@ def by_role(names: Iterable[str]) -> list[str]:
     return sorted(dict.fromkeys(names), key=lambda n: (n not in rank, rank.get(n, 0), n))
 
 
+def second_solvers(ran: Iterable[str], declined: Iterable[str]) -> list[str]:
+    """The built-in solvers (relations left out) that a case's results lack: neither run
+    (``ran``) nor declined by the case (``declined``), by role — what a hint that names
+    a solver set that would compare a lonely solver draws from."""
+    out = set(ran) | set(declined)
+    return [s for s in by_role(n for n in REGISTRY if n not in PLUGINS)
+            if s not in out and not record(s).base]
+
+
 def record(name: str) -> SolverRecord:
     """The record of solver ``name``; a name not registered (results written by another
     version) gets a grid solver's defaults."""

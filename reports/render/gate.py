@@ -15,6 +15,7 @@ from typing import TextIO
 
 import pandas as pd
 
+from reports.registry import solvers
 from reports.registry.errors import RunFailed, UserError
 from reports.registry.tolerances import UNCERTAINTY
 from reports.store.layout import METRICS
@@ -90,6 +91,20 @@ def case_problems(results: Scan) -> list[str]:
             + [f"DAMAGED {name}: {reason}" for name, reason in results.damaged.items()])
 
 
+def _second_hint(case: CaseResults) -> str:
+    """What would compare a case's lonely results: the solvers it ran with one it has not
+    tried (:func:`reports.registry.solvers.second_solvers`), and those that declined."""
+    ran = [s for s in solvers.by_role(case.manifest.get("solvers", []))
+           if s in set(case.summary.get("solver", ())) and not solvers.record(s).base]
+    declined = dict(case.manifest.get("skipped", {}))
+    untried = solvers.second_solvers(ran, declined)
+    said = "; ".join(f"{s} declined: {why}" for s, why in declined.items())
+    if not untried:
+        return "no built-in solver is left to try" + (f"; {said}" if said else "")
+    hint = f"run it with a solver that compares, e.g. --solver {','.join(ran + untried[:1])}"
+    return hint + (f"; {said}" if said else "")
+
+
 def problems(results: Scan) -> list[str]:
     """One line per failed or inconsistent metric, case without a gated metric,
     non-converged run, incomplete and damaged case."""
@@ -98,8 +113,7 @@ def problems(results: Scan) -> list[str]:
         lines += metric_problems(case)
         if not gated(case.metrics).any():
             lines.append(f"NO METRICS {case.name}: {case.path / METRICS} holds no gated "
-                         "comparison, so nothing in it is verified (run it with a second "
-                         "solver, e.g. --solver ic,analytic)")
+                         f"comparison, so nothing in it is verified ({_second_hint(case)})")
     for case in results.complete:
         for r in not_converged(case.summary).itertuples(index=False):
             lines.append(f"NOT CONVERGED {_where(case.name, r.param, r.step)} "

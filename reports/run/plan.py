@@ -153,8 +153,8 @@ PARTNER = "mirror"
 
 
 def _add_partner(plan: CasePlan) -> None:
-    """Where a point of a default run has no pair to compare (one numerical solver, no
-    closed form, the FEM not run by default), that solver's exact :data:`PARTNER`
+    """Where a point of a run has no pair to compare (one numerical solver, no closed
+    form, the FEM not run by default or not named), that solver's exact :data:`PARTNER`
     relation runs too, where it applies: a case the gate verifies nothing of fails it."""
     lonely = [c for c in plan.points if not pairs(plan.applicable(c))]
     for base in dict.fromkeys(s for c in lonely for s in plan.applicable(c)):
@@ -254,7 +254,7 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
             if reason is not None:
                 plan.skipped[s] = reason
                 plan.solvers.remove(s)
-        _add_partner(plan)
+    _add_partner(plan)  # named solvers that compare nothing get the exact relation too
     if not plan.units():  # a run of nothing would write an empty case that gates nothing
         why = "; ".join(f"{s}: {r}" for s, r in plan.skipped.items() if s in solver_names)
         raise CaseError(f"{source}: none of the solvers {', '.join(solver_names)} runs this "

@@ -278,10 +278,15 @@ def _bisect_unit(unit: Unit, ends: tuple[bool, bool]) -> dict[str, Any]:
                     status=f"bisected: {below} at lower {r.param}, {above} at higher")
 
 
+#: the statuses of a unit that says nothing of the threshold (a run of only these is
+#: refused, as ``run`` refuses a case none of its solvers runs)
+NOTHING = ("unsupported", "not by default", "n/a")
+
+
 def run(request: Request, log: Callable[[str], None] | None = None) -> list[dict[str, Any]]:
     """The threshold rows of ``request`` (module doc): UserError if the event does not
-    change over the bracket for some unit; a unit whose solver fails has a ``failed``
-    row."""
+    change over the bracket for some unit, or if no solver can say anything of it; a unit
+    whose solver fails has a ``failed`` row."""
     ends: list[tuple[Unit, tuple[bool, bool] | dict[str, Any]]] = []
     skip: set[tuple[int, str]] = set()  # a solver that cannot say: one row, not one a grid
     for u in make_units(request, log):
@@ -289,6 +294,12 @@ def run(request: Request, log: Callable[[str], None] | None = None) -> list[dict
             ends.append((u, _ends(u)))
             if isinstance(ends[-1][1], dict) and not ends[-1][1]["status"].startswith("fail"):
                 skip.add((u.point, u.solver))
+    said = [e for _, e in ends if isinstance(e, dict)]
+    if ends and len(said) == len(ends) and all(e["status"].startswith(NOTHING) for e in said):
+        why = "; ".join(dict.fromkeys(f"{e['solver']}: {e['status']}" for e in said))
+        raise UserError(f"{request.case}: none of the solvers {', '.join(request.solvers)} "
+                        f"can locate {request.event} on this case ({why}); name another "
+                        "solver with --solver")
     stuck = [(u, e[0]) for u, e in ends if isinstance(e, tuple) and e[0] == e[1]]
     if stuck:
         raise _no_change(request, stuck)
