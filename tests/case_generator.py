@@ -6,10 +6,11 @@ user's) with only physics, a grid and the stress planes: no ``[tolerances]``, no
 ``benchmarks/README.md``, "False alarms"):
 
 - kinds: Hertz (identical materials, frictionless or with friction and no tangential
-  load), Hertz of a dissimilar frictionless pair, Cattaneo–Mindlin partial slip under an
+  load), Hertz of a dissimilar frictionless pair (either under the load or the approach
+  held), Cattaneo–Mindlin partial slip under an
   oblique tangential load, full sliding in any direction with isotropic or orthotropic
   friction, the worn pin (Argatov's asymptotic solution) with and without friction, and
-  the first fretting cycle (Mindlin–Deresiewicz) under a held approach;
+  the first fretting cycle (Mindlin–Deresiewicz) under a held approach, in any direction;
 - R 5–200 mm, P 1–300 N (log-uniform), E 70–400 GPa, ν −0.3–0.45, μ 0.05–0.8 (sliding)
   or 0.1–0.8, Q/(μP) 0.1–0.9, fretting amplitude 0.2–3 δ*, worn contact radius 1.5–3 a0;
 - the grid: 3.5–10 cells per contact radius (the worn radius for a pin), its half-width
@@ -55,6 +56,8 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
     friction, load, extra = "", f"P = {P!r}\n", ""
     top = 'kind = "static"\n'
     reach = a0
+    if kind in ("hertz", "dissimilar") and draw(st.booleans()):  # the approach held
+        load = f"approach = {a0**2 / R!r}\n"
     if kind == "hertz" and draw(st.booleans()):
         friction = f"[friction]\nmu = {draw(st.floats(0.05, 0.8))!r}\n"
     elif kind == "partial_slip":
@@ -94,6 +97,7 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
         delta_star = 3 * mu * P / (16 * a0) * 2 * (2 - mat_a[1]) / G  # Mindlin, both bodies
         i_w = draw(_log_uniform(1e-10, 1e-8))
         body_a = body_b = f"i1 = {i_w!r}\n"
+        load += f"slide_angle = {draw(st.floats(-180.0, 180.0))!r}\n"  # any direction
         extra = (f"[fretting]\namplitude = {draw(st.floats(0.2, 3.0)) * delta_star!r}\n"
                  f"steps_per_cycle = {draw(st.sampled_from([8, 12, 20]))}\ncycles = 1\n"
                  f"output_cycles = [1]\n[solver]\ntol = 1e-8\n")

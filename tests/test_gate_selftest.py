@@ -35,19 +35,22 @@ def _case(text: str) -> Case:
 BODIES = ("[materials.a]\nE = 210000.0\nnu = 0.3\ni1 = 1e-9\n"
           "[materials.b]\nE = 210000.0\nnu = 0.3\ni1 = 1e-9\n[geometry]\nR = 50.0\n")
 #: partial slip, a/h = 12.5: tractions, stick zone, planes
-SLIP_CASE = _case('kind = "static"\n' + BODIES + "[grid]\nLx = 0.45\nnx = 61\n"
-                  "[friction]\nmu = 0.3\n[load]\nP = 10.2\nQx = 1.53\n"
-                  "[stress]\ndepth = 0.3\nnz = 31\n")
+SLIP_TEXT = ('kind = "static"\n' + BODIES + "[grid]\nLx = 0.45\nnx = 61\n"
+             "[friction]\nmu = 0.3\n[load]\nP = 10.2\nQx = 1.53\n"
+             "[stress]\ndepth = 0.3\nnz = 31\n")
+SLIP_CASE = _case(SLIP_TEXT)
 #: full sliding at mu = 0.5: a surface maximum, its companion below
-SLIDING_CASE = _case('kind = "static"\n' + BODIES + "[grid]\nLx = 0.45\nnx = 61\n"
-                     "[friction]\nmu = 0.5\n[load]\nP = 10.2\nsliding = true\n"
-                     "[stress]\ndepth = 0.3\nnz = 31\n")
+SLIDING_TEXT = ('kind = "static"\n' + BODIES + "[grid]\nLx = 0.45\nnx = 61\n"
+                "[friction]\nmu = 0.5\n[load]\nP = 10.2\nsliding = true\n"
+                "[stress]\ndepth = 0.3\nnz = 31\n")
+SLIDING_CASE = _case(SLIDING_TEXT)
 #: the first fretting cycle in gross slip, a/h = 12: wear, loop, energy
-FRETTING_CASE = _case('kind = "fretting"\n' + BODIES + "[grid]\nLx = 1.6\nnx = 61\n"
-                      "[friction]\nmu = 0.3\n[load]\napproach = 0.008\n"
-                      "[fretting]\namplitude = 0.0043714\nsteps_per_cycle = 8\ncycles = 1\n"
-                      "output_cycles = [1]\n[solver]\ntol = 1e-8\n"
-                      "[stress]\ndepth = 0.8\nnz = 21\n")
+FRETTING_TEXT = ('kind = "fretting"\n' + BODIES + "[grid]\nLx = 1.6\nnx = 61\n"
+                 "[friction]\nmu = 0.3\n[load]\napproach = 0.008\n"
+                 "[fretting]\namplitude = 0.0043714\nsteps_per_cycle = 8\ncycles = 1\n"
+                 "output_cycles = [1]\n[solver]\ntol = 1e-8\n"
+                 "[stress]\ndepth = 0.8\nnz = 21\n")
+FRETTING_CASE = _case(FRETTING_TEXT)
 
 Perturb = Callable[[Case, RunResult], None]
 
