@@ -34,18 +34,6 @@ def imposed_history(amplitude: float, steps_per_cycle: int) -> tuple[np.ndarray,
     return np.concatenate([[0.0], loading, path.cycle_path()]), loading.size
 
 
-def trapezoid_energy(amplitude: float, steps_per_cycle: int, mu: float, P: float,
-                     delta_star: float) -> float:
-    """|Σ ½(Q_k + Q_{k-1})(δ_k - δ_{k-1})| over the steps of :func:`imposed_cycle`, Q the
-    Mindlin–Deresiewicz load (:func:`md_path`): the energy per cycle measured with the
-    trapezoidal rule on the solvers' own steps.  Below :func:`cycle_energy` by the rule's
-    error, -1.0 | -0.86 % at 20 steps and -6.3 | -5.6 % at 8 (partial slip at 0.5 δ* |
-    gross slip at 1.5 δ*)."""
-    hist, q = imposed_history(amplitude, steps_per_cycle)
-    Q = fr.md_path(hist, mu, P, delta_star)
-    return fr.loop_area(hist[q:], Q[q:])
-
-
 def no_solution_reason(case: Case) -> str | None:
     """Why a fretting case has no first-cycle closed form here (None: it has one)."""
     f, fc, a, b = case.friction, case.fretting, case.a, case.b

@@ -190,9 +190,3 @@ def surface_jump(nu: float, bracket: tuple[float, float] = (0.2, 0.45),
     mu = float(brentq(diff, *bracket, xtol=1e-7))
     diff(mu)
     return SurfaceJump(mu=mu, value=state[2], sub_x=state[0], sub_z=state[1])
-
-
-def surface_jump_mu(nu: float, bracket: tuple[float, float] = (0.2, 0.45),
-                    start: tuple[float, float] | None = None) -> float:
-    """Friction coefficient at which the location of max σ_VM jumps to the surface."""
-    return surface_jump(nu, bracket, start).mu

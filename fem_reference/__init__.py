@@ -24,7 +24,7 @@ Public API:
 - :class:`FemUnsupported` (a ``CaseError``: the case needs a feature the model does not
   have, e.g. P1), :class:`FemError` (a failure such as the contact leaving
   the FE contact zone), :class:`MeshError` (gmsh failed) and
-  :class:`ContactConvergenceError` (contact iteration failed; message has the residual).
+  :class:`ContactNotConverged` (contact iteration failed; message has the residual).
 """
 
 from collections.abc import Callable
@@ -32,7 +32,7 @@ from collections.abc import Callable
 from cases.model import Case
 from cases.result import Cost, RunResult, StepResult
 
-from .contact.augmented import ContactConvergenceError
+from .contact.augmented import ContactNotConverged
 from .errors import FemError, FemUnsupported
 from .fields.vtu import read_vtu, write_vtu
 from .model.mesh import MeshError
@@ -91,5 +91,5 @@ def estimate(case: Case) -> Cost:
 __all__ = [
     "supports", "by_default", "estimate",
     "solve", "write_vtu", "read_vtu", "FemError", "FemUnsupported", "MeshError",
-    "ContactConvergenceError",
+    "ContactNotConverged",
 ]

@@ -30,7 +30,7 @@ from cases.result import Cost
 
 from .model.fem_model import FemModel
 from .model.mesh import SURFACE_GRADING, MeshSpec
-from .model.shape import choose_shape, expected_radius, has_companion, reference_length
+from .model.shape import choose_shape, has_companion, mesh_reach, reference_length
 
 C_TET = 0.225  # mean tetrahedron volume / size³ of gmsh's meshes
 C_TRI = 0.405  # mean surface triangle area / size²
@@ -67,7 +67,7 @@ def mesh_spec(case: Case) -> tuple[MeshSpec | None, dict]:
     other drivers: ``a_max`` (expected radius / a_ref), ``r_c``, ``shape``, ``comps``
     (condensed components), ``nus`` (distinct Poisson's ratios), ``law``."""
     fem = case.fem
-    a_max = expected_radius(case, reference_length(case))
+    a_max = mesh_reach(case, reference_length(case))
     r_c = 1.25 * a_max + 2.0 * fem.h
     z_ref = max(1.0, 0.8 * a_max)
     r_fine = min(1.25, r_c) if a_max > 1.25 else r_c

@@ -33,13 +33,6 @@ def wrap_offsets(n: int, m: int) -> np.ndarray:
     return k
 
 
-def kernel_spectrum(coeff: np.ndarray, shape: tuple[int, int], n: tuple[int, int]) -> np.ndarray:
-    """rfft2 of a kernel sampled on wrap-around offsets, zero outside |offset| < n cells."""
-    inside = [np.abs(wrap_offsets(ni, mi)) < ni for ni, mi in zip(n, shape, strict=True)]
-    k = np.where(inside[0][:, None] & inside[1][None, :], coeff, 0.0)
-    return sfft.rfft2(k, workers=WORKERS)
-
-
 class _LazySpectra(dict):
     """Kernel spectra computed on first access by ``build(key)``."""
 

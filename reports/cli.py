@@ -131,7 +131,8 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _article_parser(sub: Any, common: Any) -> None:
-    """``contact-vv article``: the source article's claims judged (reports/run/article.py)."""
+    """``contact-vv article``: the source article's claims judged
+    (reports/run/article_sources.py)."""
     art = sub.add_parser("article", help="judge the source article's claims from the results "
                          "in DIR (running what is missing) and write DIR/article.html")
     art.add_argument("--claims", metavar="N,M-K", help="the claims to judge (default: all)")
@@ -345,8 +346,8 @@ def cmd_threshold(args: argparse.Namespace) -> int:
 
 
 def cmd_article(args: argparse.Namespace) -> int:
-    from reports.render.article import judge_and_write
-    from reports.run import article
+    from reports.render.article_page import judge_and_write
+    from reports.run import article_sources as article
     from reports.run.plan import select_solvers
     from reports.run.threshold_table import stderr_log
     from reports.studies.claims import numbers

@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 from reports.cli import main
-from reports.render.article import judge_and_write
+from reports.render.article_page import judge_and_write
 from reports.store import layout
 from reports.studies.claims import CLAIMS, judge
 from reports.studies.claims.finding import ARTICLE_GRID, FAILS, HOLDS, UNDECIDED

@@ -99,20 +99,20 @@ def test_loops_follow_the_imposed_path():
     assert gross.tables["cycles"]["gross_slip"][0] == 1.0
 
 
-def test_expected_radius_and_model_of_a_fretting_case():
+def test_mesh_reach_and_model_of_a_fretting_case():
     """The FE contact zone is sized for the worn contact: under a held approach δ the
     contact never outgrows the rigid overlap a² = 2Rδ (radius √2 a), and a case that
     barely wears keeps the Hertz radius; fretting along x with axes along x, y is a
     half model, along 30° the full block."""
     from dataclasses import replace
 
-    from fem_reference.model.shape import choose_shape, expected_radius
+    from fem_reference.model.shape import choose_shape, mesh_reach
 
     worn = load_case("fretting_orthotropic", quick=True)[0]
-    assert expected_radius(worn, math.sqrt(worn.R * worn.load.approach)) == pytest.approx(
+    assert mesh_reach(worn, math.sqrt(worn.R * worn.load.approach)) == pytest.approx(
         math.sqrt(2.0))
     light = load_case("fretting_isotropic", quick=True)[1]
-    assert expected_radius(light, math.sqrt(light.R * light.load.approach)) == pytest.approx(
+    assert mesh_reach(light, math.sqrt(light.R * light.load.approach)) == pytest.approx(
         1.0, abs=1e-5)
     assert choose_shape(worn) == "half"
     assert choose_shape(worn.with_changes(load=replace(worn.load, slide_angle=30.0))) == "full"

@@ -25,7 +25,7 @@ from vv_testing import assert_converges, hertz_solution
 
 from cases.loader import load_case
 from cases.model import FemSettings
-from fem_reference import ContactConvergenceError, FemError, solve
+from fem_reference import ContactNotConverged, FemError, solve
 
 pytestmark = pytest.mark.fem
 
@@ -274,7 +274,7 @@ def test_nonconvergence_raises_with_residual():
     try:
         for solver in ("semismooth", "augmented"):
             with (pytest.MonkeyPatch.context() as mp,
-                  pytest.raises(ContactConvergenceError, match="residual")):
+                  pytest.raises(ContactNotConverged, match="residual")):
                 mp.setattr(semismooth, "MAX_ITER", 1)
                 solve(case.with_changes(fem=replace(case.fem, contact=solver)), vtu=False)
     finally:

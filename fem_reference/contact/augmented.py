@@ -48,7 +48,7 @@ from .stiffened import StiffenedSolver
 from .threads import blas_threads
 
 
-class ContactConvergenceError(RuntimeError):
+class ContactNotConverged(RuntimeError):
     """The contact iteration did not converge; the message gives the residual."""
 
 
@@ -107,7 +107,7 @@ def newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, u
     Unknowns: the relative surface displacements u, and δ (load control on P) and
     the components of g_t,o under tangential load control.  Equations:
     ``K u − Gᵀ W t(u) = 0``, ``sym Σ w p_n = P`` and ``sym Σ w p_t = Q``.
-    Raises :class:`ContactConvergenceError` with the residual if it does not converge.
+    Raises :class:`ContactNotConverged` with the residual if it does not converge.
     """
     with blas_threads(1):
         return _newton(K, C, law, pts, ctrl, u0, cw=cw, tol=tol, max_iter=max_iter,
@@ -152,7 +152,7 @@ def augmented(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control
         if change < tol:
             return Solution(u=u, delta=delta, D=D, ev=ev, iterations=total,
                             residual=sol.residual, outer=outer)
-    raise ContactConvergenceError(
+    raise ContactNotConverged(
         f"augmented Lagrangian did not converge in {max_outer} multiplier updates: "
         f"relative multiplier change {change:.3e} (tolerance {tol:.1e})"
     )
@@ -175,7 +175,7 @@ def _newton(K: np.ndarray, C: np.ndarray, law: Law, pts: Points, ctrl: Control, 
         u, delta, D, (ev, f, Ru, Re), res = eqs.line_search(u, delta, D, dx, res, tol)
         if res < tol:
             return Solution(u=u, delta=delta, D=D, ev=ev, iterations=it, residual=res)
-    raise ContactConvergenceError(
+    raise ContactNotConverged(
         f"contact Newton did not converge in {max_iter} iterations: relative residual "
         f"{res_hist[-1]:.3e} (tolerance {tol:.1e}); last residuals "
         + ", ".join(f"{r:.2e}" for r in res_hist[-5:])
@@ -277,7 +277,7 @@ class _Equations:
             xu, Xu = X[:, 0], X[:, 1:]
             dx_e = la.solve(W - V @ Xu, -Re - V @ xu) if ne else np.zeros(0)
         except (la.LinAlgError, ValueError) as exc:
-            raise ContactConvergenceError(
+            raise ContactNotConverged(
                 f"singular contact Jacobian at iteration {it} (residual {res:.3e}): {exc}"
             ) from None
         return np.concatenate([xu - Xu @ dx_e, dx_e])

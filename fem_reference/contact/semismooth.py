@@ -34,7 +34,7 @@ import numpy as np
 
 from cases.result import OPEN, SLIP, STICK
 
-from .augmented import ContactConvergenceError, Control, Solution, unknowns
+from .augmented import ContactNotConverged, Control, Solution, unknowns
 from .compliance import NodalCompliance
 from .kept_factors import KeptFactors
 from .laws import Evaluation, Law, Points, norm_with
@@ -79,7 +79,7 @@ def semismooth(op: NodalCompliance, law: Law, pts: Points, ctrl: Control, *,
     of the last step unchanged; at most ``max_iter`` (default :data:`MAX_ITER`)
     iterations.  ``iterations``: Newton iterations.  ``kept``: the factors of the
     Newton systems (:class:`KeptFactors`), kept by the caller for the next solves.
-    Raises :class:`~fem_reference.contact.augmented.ContactConvergenceError` with the residual.
+    Raises :class:`~fem_reference.contact.augmented.ContactNotConverged` with the residual.
     """
     with blas_threads(1):
         return _Solver(op, law, pts, ctrl, cw, tol, kept or KeptFactors()).run(
@@ -200,7 +200,7 @@ class _Solver:
         d_e = d_e.reshape(3, n)
         na, ne = act.size, len(self.extra)
         if na == 0 and any(c is None for _, c in self.extra):
-            raise ContactConvergenceError(
+            raise ContactNotConverged(
                 "semi-smooth Newton: no node in contact under a prescribed load (the "
                 f"iterate lost the contact; relative residual {self.merit(s, L):.3e})")
         nk = cols.size
@@ -232,7 +232,7 @@ class _Solver:
         with np.errstate(divide="ignore", invalid="ignore"):
             x = self._solve(J, b, cols, na)
         if not np.isfinite(x).all():
-            raise ContactConvergenceError("singular semi-smooth Newton system")
+            raise ContactNotConverged("singular semi-smooth Newton system")
         dlam_flat[cols] = x[:nk]
         if law.mode == "sliding":
             for c in (0, 1):
@@ -378,7 +378,7 @@ class _Solver:
             same = np.array_equal(sets[0], L.active) and np.array_equal(sets[1], L.stick)
             if res < self.tol and same:
                 return self.solution(s, L, it, res)
-        raise ContactConvergenceError(
+        raise ContactNotConverged(
             f"semi-smooth Newton did not converge in {max_iter} iterations: relative "
             f"residual {hist[-1]:.3e} (tolerance {self.tol:.1e}); last residuals "
             + ", ".join(f"{v:.2e}" for v in hist[-5:]))

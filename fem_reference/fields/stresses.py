@@ -84,25 +84,6 @@ def sample_stresses(space: P2Space, locator: PointLocator, u: np.ndarray, nu: fl
     return out
 
 
-def sample_recovered(space: P2Space, locator: PointLocator, nodal: np.ndarray,
-                     points: np.ndarray) -> dict[str, np.ndarray]:
-    """Stress components at ``points`` from recovered nodal stresses (nnodes, 3, 3).
-
-    The recovered field is the continuous P2 interpolant of the volume-averaged nodal
-    stresses (:func:`nodal_stresses`): it smooths the element-to-element jumps of the
-    raw P2 stresses (piecewise linear, discontinuous), whose zigzag otherwise decides
-    where along a line the maximum of σ_VM falls.
-    """
-    from ..model.elasticity import p2_values
-
-    points = np.atleast_2d(points)
-    pidx, elems, lam = locator.locate(points)
-    first = np.unique(pidx, return_index=True)[1]
-    S = nodal[space.element_nodes[:, elems[first]].T]  # (n, 10, 3, 3)
-    sig = np.einsum("na,naij->nij", p2_values(lam[first]), S)
-    return {name: sig[:, i, j].copy() for name, (i, j) in zip(COMPONENTS, _PAIRS, strict=True)}
-
-
 def sample_displacement(space: P2Space, locator: PointLocator, u: np.ndarray,
                         points: np.ndarray) -> np.ndarray:
     """P2 displacement (n, 3) at ``points``."""

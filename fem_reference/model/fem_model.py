@@ -50,8 +50,8 @@ from . import block
 from .mesh import MeshSpec
 from .shape import (
     choose_shape,
-    expected_radius,
     has_companion,
+    mesh_reach,
     reference_length,
     slide_direction,
 )
@@ -115,7 +115,7 @@ class FemModel:
             )
         self.a_ref = reference_length(case)
         self.h = fem.h_contact * self.a_ref  # element size at the contact surface [mm]
-        self.a_max = expected_radius(case, self.a_ref)  # units of a_ref
+        self.a_max = mesh_reach(case, self.a_ref)  # units of a_ref
         r_c = 1.25 * self.a_max + 2.0 * fem.h
         z_ref = max(1.0, 0.8 * self.a_max)
         # a growing (worn) contact: h in the initial contact, then h ∝ distance, so the

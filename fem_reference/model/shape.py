@@ -39,8 +39,10 @@ def wear_compliances(case: Case, slip: np.ndarray) -> tuple[float, float]:
     return float(ia), float(ib)
 
 
-def expected_radius(case: Case, a_ref: float) -> float:
-    """Largest contact radius expected during the run, in units of ``a_ref``.
+def mesh_reach(case: Case, a_ref: float) -> float:
+    """The largest contact radius the FE contact zone must hold during the run, in units
+    of ``a_ref`` (an upper estimate for the mesh, unlike the case's own
+    :attr:`cases.model.Case.expected_radius`, which is Hertz's or the worn pin's radius).
 
     Hertz for static cases; Argatov's worn-pin radius (docs/cases.md, case 4)
     a⁴ = a0⁴ + 4 i_w P s R / π at the end of a sliding-wear run.
