@@ -7,8 +7,15 @@ inside module-level cached functions that fixtures cannot reach).
 
 from __future__ import annotations
 
+import os
+
 import pytest
+from threadpoolctl import threadpool_limits
 from vv_testing import load_bundled
+
+#: under pytest-xdist (pyproject.toml: two workers on two cores) each worker's BLAS runs
+#: on one thread, so that the workers do not contend for the cores
+_ONE_BLAS_THREAD = threadpool_limits(1) if os.environ.get("PYTEST_XDIST_WORKER") else None
 
 
 @pytest.fixture(scope="session")
