@@ -55,7 +55,7 @@ def point_rows(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
                 rows += compare_tables(results[sa_name].tables, results[sb_name].tables,
                                        cycle, mu_P)
             exact = solvers.exact_pair(pair)
-            resolution = None if exact else step_resolution(sa, sb, cell)
+            resolution = None if exact else step_resolution(sa, sb, cell, x0, y0)
             for quantity, metric, value in rows:
                 shown = None if exact else _SHOWN.get(metric)  # a band's max, never gated
                 limit, key = tol.tolerance(
@@ -75,10 +75,12 @@ def point_rows(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
     return frame
 
 
-def step_resolution(sa: StepResult, sb: StepResult, cell: float) -> Resolution | None:
+def step_resolution(sa: StepResult, sb: StepResult, cell: float, x0: float = 0.0,
+                    y0: float = 0.0) -> Resolution | None:
     """The cells (the coarser of the sample spacings and ``cell``) across the contact
-    radius and the slip zone of reference ``sb`` (else ``sa``) (:mod:`reports.registry.resolution`);
-    None without a contact area."""
+    radius a, the slip zone of reference ``sb`` (else ``sa``) and the contact's
+    half-chords √(a² − y0²), √(a² − x0²) on the planes through (x0, y0)
+    (:mod:`reports.registry.resolution`); None without a contact area."""
     h = max(spacing(sa.x), spacing(sa.y), spacing(sb.x), spacing(sb.y), cell)
     area = next((v for v in (scalar(sb, "contact_area"), scalar(sa, "contact_area"))
                  if math.isfinite(v) and v > 0), math.nan)
@@ -87,7 +89,9 @@ def step_resolution(sa: StepResult, sb: StepResult, cell: float) -> Resolution |
     stick = next((v for v in (scalar(sb, "stick_area"), scalar(sa, "stick_area"))
                   if math.isfinite(v)), 0.0)
     a, c = math.sqrt(area / math.pi), math.sqrt(max(stick, 0.0) / math.pi)
-    return Resolution(contact=a / h, slip=max(a - c, 0.0) / h)
+    return Resolution(contact=a / h, slip=max(a - c, 0.0) / h,
+                      chord_xz=math.sqrt(max(a * a - y0 * y0, 0.0)) / h,
+                      chord_yz=math.sqrt(max(a * a - x0 * x0, 0.0)) / h)
 
 
 def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:

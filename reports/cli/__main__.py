@@ -1,0 +1,7 @@
+"""``python -m reports.cli`` is ``contact-vv``."""
+
+import sys
+
+from reports.cli import main
+
+sys.exit(main())

@@ -1,0 +1,157 @@
+"""The commands that run cases: ``list``, ``run`` and ``sweep``."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+from cases.loader import BUNDLED, CASES_DIR, load_case
+from cases.model import CaseError
+from reports.cli.parser import PROG, limits_of, parse_overrides, parse_solvers
+from reports.registry import solvers
+from reports.registry.errors import UserError
+
+
+def cmd_list(args: argparse.Namespace) -> int:
+    for name in BUNDLED:
+        if not (CASES_DIR / f"{name}.toml").is_file():
+            print(f"{name:26s} (case file missing)")
+            continue
+        try:
+            points = load_case(name)
+        except CaseError as exc:
+            print(f"{name:26s} INVALID: {exc}")
+            continue
+        first = points[0]
+        sweep = f"{len(points)} points" if len(points) > 1 else "1 point"
+        print(f"{name:26s} {first.kind:13s} {sweep:10s} {first.description}")
+    print()
+    for s in solvers.names():
+        ok, reason = solvers.available(s)
+        kind = " (plugin)" if s in solvers.PLUGINS else ""
+        print(f"solver {s:9s} {'available' if ok else 'unavailable: ' + reason}{kind}")
+    return 0
+
+
+def report_runs(runs, out: Path) -> int:
+    """Print where each run wrote its results, or its failures; the exit status."""
+    from reports.store.layout import staging_dir
+
+    failed, user = [], False
+    for r in runs:
+        if r.failures:
+            failed.append(r)
+            user = user or r.user_error
+        else:
+            print(f"{r.name}: {r.path} ({r.wall_s:.1f} s)")
+    for r in failed:
+        for line in r.failures:
+            print(f"{PROG}: error: {line}", file=sys.stderr)
+        print(f"{PROG}: {r.name}: incomplete results left in {staging_dir(out, r.name)} "
+              "(not reported as complete)", file=sys.stderr)
+    if failed:
+        return 2 if user else 1
+    return 0
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    from reports.run.plan import plan_case, select_solvers
+    from reports.run.runner import execute
+
+    names = list(args.cases)
+    if args.all:
+        missing = [n for n in BUNDLED if not (CASES_DIR / f"{n}.toml").is_file()]
+        for n in missing:
+            print(f"{PROG}: warning: bundled case {n} has no case file yet; skipped",
+                  file=sys.stderr)
+        names += [n for n in BUNDLED if n not in missing and n not in names]
+    if not names:
+        raise UserError("run needs at least one CASE or --all")
+    requested = parse_solvers(args.solver)
+    chosen, skipped = select_solvers(requested, relations=args.quick)
+    overrides = parse_overrides(args.overrides)
+    limits = limits_of(args)
+    plans = [plan_case(n, chosen, quick=args.quick, overrides=overrides, skipped=skipped,
+                       limits=limits, explicit=bool(requested))
+             for n in names]  # validate every case before running
+    if args.convergence:
+        from reports.run.study_runs import add_grid_studies
+
+        plans = add_grid_studies(plans, limits)
+    if args.jump_study:
+        plans = _add_jumps(plans, limits)
+    seen: dict[str, str] = {}
+    for n, p in zip(names, plans, strict=True):
+        if p.dir_name in seen:
+            raise UserError(f"cases {seen[p.dir_name]} and {n} both write {p.dir_name}/")
+        seen[p.dir_name] = n
+    for p in plans:
+        for w in p.warnings:
+            print(f"{PROG}: warning: {w}", file=sys.stderr)
+    progress = False if args.no_progress else None
+    codes = [report_runs([execute(p, args.out, progress=progress)], args.out)
+             for p in plans]  # each case reported as soon as it is done
+    return 2 if 2 in codes else max(codes)
+
+
+def cmd_sweep(args: argparse.Namespace) -> int:
+    from reports.run.plan import select_solvers
+    from reports.run.runner import execute
+    from reports.run.sweep import DaskExecutor, parse_param, plan_sweep
+    from reports.run.units import serial_executor
+
+    params = [parse_param(p) for p in args.param]
+    if args.workers < 0:
+        raise UserError("--workers must be >= 0")
+    requested = parse_solvers(args.solver)
+    chosen, skipped = select_solvers(requested, relations=args.quick)
+    plan = plan_sweep(args.case, params, chosen, quick=args.quick,
+                      overrides=parse_overrides(args.overrides), skipped=skipped,
+                      limits=limits_of(args), explicit=bool(requested))
+    for w in plan.warnings:
+        print(f"{PROG}: warning: {w}", file=sys.stderr)
+    progress = False if args.no_progress else None
+    t0 = time.perf_counter()
+    if args.workers == 0 and not args.scheduler:
+        run = execute(plan, args.out, executor=serial_executor, progress=progress,
+                      extra_manifest={"executor": {"scheduler": "serial", "workers": 1}})
+    else:
+        with DaskExecutor(args.scheduler, args.workers) as dask:
+            run = execute(plan, args.out, executor=dask, progress=progress,
+                          extra_manifest={"executor": dask.info})
+    wall = time.perf_counter() - t0
+    code = report_runs([run], args.out)
+    if code != 0:
+        return code
+    from reports.render.plots import write_sweep_plot
+
+    write_sweep_plot(run.path)
+    print(f"sweep: {len(plan.units())} task(s) in {wall:.1f} s wall "
+          f"(sum of task times {run.unit_wall_s:.1f} s)")
+    if args.check_serial:
+        return _check_serial(plan, run.path, wall)
+    return 0
+
+
+def _check_serial(plan, path: Path, wall: float) -> int:
+    """Re-run a sweep serially; compare its numbers and wall time with the sweep's."""
+    from reports.run.sweep import check_serial
+
+    check = check_serial(plan, path, wall)
+    print(f"sweep: serial re-run {check['serial_wall_s']:.1f} s vs parallel {wall:.1f} s "
+          f"(speed-up {check['speedup']:.2f}x); numbers "
+          + ("identical" if check["identical"] else "DIFFER"))
+    return 0 if check["identical"] else 1
+
+
+def _add_jumps(plans: list[Any], limits: Any) -> list[Any]:
+    """The plans with their cycle-jump studies (:func:`reports.run.study_runs.add_jump_studies`)."""
+    from reports.run.study_runs import add_jump_studies
+
+    plans, notes = add_jump_studies(plans, limits)
+    for note in notes:
+        print(f"{PROG}: note: --jump-study: {note}", file=sys.stderr)
+    return plans
