@@ -50,8 +50,8 @@ SLIDING = _static(25.0, 20.0, 200000.0, 0.25, 0.8, 81, "P = 20.0\nsliding = true
 FRETTING_PARTIAL = _fretting(0.4 * 2.4285714e-3)
 FRETTING_GROSS = _fretting(2.0 * 2.4285714e-3)
 #: found by the generator once it drew planes off the centre (2026-11-28): the xz plane
-#: 0.87 a off the axis on an even 12-cell grid crosses the contact over 1.9 cells a side
-#: (vm_xz L2 5.8 % against 3.5 %): its half-chord is below the planes' resolution floor
+#: 0.87 a off the axis on an even 12-cell grid lies half a cell inside the contact edge
+#: (vm_xz L2 5.8 % against 3.5 %): below the planes' resolution floor
 OFF_CENTRE_PLANE = _static(5.754602676005731, 1.0, 70000.0, 0.0, 0.14932210681495445, 12,
                            "P = 1.0\n", "", 0.07466105340747722).replace(
     "nz = 31\n", "nz = 11\nx0 = 0.0\ny0 = 0.03733052670373861\n")

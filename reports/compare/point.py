@@ -78,8 +78,8 @@ def point_rows(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
 def step_resolution(sa: StepResult, sb: StepResult, cell: float, x0: float = 0.0,
                     y0: float = 0.0) -> Resolution | None:
     """The cells (the coarser of the sample spacings and ``cell``) across the contact
-    radius a, the slip zone of reference ``sb`` (else ``sa``) and the contact's
-    half-chords √(a² − y0²), √(a² − x0²) on the planes through (x0, y0)
+    radius a, the slip zone of reference ``sb`` (else ``sa``) and the distances a − |y0|,
+    a − |x0| from the planes through (x0, y0) to the contact edge
     (:mod:`reports.registry.resolution`); None without a contact area."""
     h = max(spacing(sa.x), spacing(sa.y), spacing(sb.x), spacing(sb.y), cell)
     area = next((v for v in (scalar(sb, "contact_area"), scalar(sa, "contact_area"))
@@ -90,8 +90,7 @@ def step_resolution(sa: StepResult, sb: StepResult, cell: float, x0: float = 0.0
                   if math.isfinite(v)), 0.0)
     a, c = math.sqrt(area / math.pi), math.sqrt(max(stick, 0.0) / math.pi)
     return Resolution(contact=a / h, slip=max(a - c, 0.0) / h,
-                      chord_xz=math.sqrt(max(a * a - y0 * y0, 0.0)) / h,
-                      chord_yz=math.sqrt(max(a * a - x0 * x0, 0.0)) / h)
+                      inset_xz=(a - abs(y0)) / h, inset_yz=(a - abs(x0)) / h)
 
 
 def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:

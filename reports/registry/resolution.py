@@ -30,10 +30,10 @@ Floors, measured with the half-space solver against the closed forms on generate
 - the energy dissipated in a cycle (``energy``): as the wear, a slip zone of 5 cells
   (it is dissipated in the slip zone: 5.3 % at 2.1 cells, against 3 %), and a contact
   radius of 8 cells;
-- the σ_VM planes (``vm_xz``, ``vm_yz``): the contact's half-chord on the plane,
-  √(a² − y0²) on the xz plane through y0 (√(a² − x0²) on the yz plane), of 2.5 cells —
-  a plane off the centre near the contact edge crosses a contact a few cells wide
-  (``benchmarks/README.md``, "Stress planes off the centre").
+- the σ_VM planes (``vm_xz``, ``vm_yz``): the plane one cell inside the contact edge,
+  a − |y0| for the xz plane through y0 (a − |x0| for the yz plane) — a plane off the
+  centre within a cell of the edge crosses the contact where its discretised edge
+  shapes the whole plane (``benchmarks/README.md``, "Stress planes off the centre").
 """
 
 from __future__ import annotations
@@ -44,13 +44,13 @@ from dataclasses import dataclass
 
 @dataclass(frozen=True)
 class Resolution:
-    """How many cells span the contact radius, the slip zone and the contact's
-    half-chords on the xz and yz stress planes of a step."""
+    """How many cells span the contact radius, the slip zone, and the distances from the
+    xz and yz stress planes to the contact edge of a step."""
 
     contact: float
     slip: float
-    chord_xz: float = math.inf
-    chord_yz: float = math.inf
+    inset_xz: float = math.inf
+    inset_yz: float = math.inf
 
 
 #: quantity (all its metrics) or ``<quantity>_<metric>`` -> the lengths and the cells each
@@ -65,12 +65,12 @@ FLOORS: dict[str, tuple[tuple[str, float], ...]] = {
     "wear_volume": (("slip", 5.0),),
     "loop_q": (("slip", 1.5), ("contact", 8.0)),
     "energy": (("slip", 5.0), ("contact", 8.0)),
-    "vm_xz": (("chord_xz", 2.5),),
-    "vm_yz": (("chord_yz", 2.5),),
+    "vm_xz": (("inset_xz", 1.0),),
+    "vm_yz": (("inset_yz", 1.0),),
 }
 _NAMES = {"slip": "slip zone", "contact": "contact radius",
-          "chord_xz": "contact's half-chord on the xz plane",
-          "chord_yz": "contact's half-chord on the yz plane"}
+          "inset_xz": "distance from the xz plane to the contact edge",
+          "inset_yz": "distance from the yz plane to the contact edge"}
 
 
 def unresolved(quantity: str, metric: str, resolution: Resolution | None) -> str:
