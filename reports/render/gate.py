@@ -94,8 +94,9 @@ def case_problems(results: Scan) -> list[str]:
 def _second_hint(case: CaseResults) -> str:
     """What would compare a case's lonely results: the solvers it ran with one it has not
     tried (:func:`reports.registry.solvers.second_solvers`), and those that declined."""
+    have = set(case.summary.get("solver", ()))
     ran = [s for s in solvers.by_role(case.manifest.get("solvers", []))
-           if s in set(case.summary.get("solver", ())) and not solvers.record(s).base]
+           if s in have and not solvers.record(s).base]
     declined = dict(case.manifest.get("skipped", {}))
     untried = solvers.second_solvers(ran, declined)
     said = "; ".join(f"{s} declined: {why}" for s, why in declined.items())
