@@ -1,24 +1,37 @@
 """Valid cases a user could write, over the closed forms' domains, as Hypothesis strategies.
 
 Each draw is the text of a case file (so it goes through the loader's validation like a
-user's) with only physics, a grid and the stress planes: no ``[tolerances]``, no
-``[not_converged]``, no ``stress.z_below``, no ``[fem]``.  The ranges (also in
-``benchmarks/README.md``, "False alarms"):
+user's).  The ranges (also in ``benchmarks/README.md``, "False alarms"):
 
 - kinds: Hertz (identical materials, frictionless or with friction and no tangential
   load), Hertz of a dissimilar frictionless pair (either under the load or the approach
-  held), Cattaneo–Mindlin partial slip under an
-  oblique tangential load, full sliding in any direction with isotropic or orthotropic
-  friction, the worn pin (Argatov's asymptotic solution) with and without friction, and
-  the first fretting cycle (Mindlin–Deresiewicz) under a held approach, in any direction;
+  held), Cattaneo–Mindlin partial slip under an oblique tangential load or an oblique
+  rigid shift (0.1–0.9 of Mindlin's δ*), full sliding in any direction with isotropic or
+  orthotropic friction, the worn pin (Argatov's asymptotic solution) frictionless or with
+  isotropic or orthotropic friction, its wear isotropic or orthotropic (i2/i1 0.2–5, the
+  axes at any β, sliding in any direction), and the first fretting cycle
+  (Mindlin–Deresiewicz) under a held approach, in any direction, its wear orthotropic
+  along a principal axis (the closed form's domain), 1–3 cycles with cycle 1 an output,
+  the transverse motion held or free;
 - R 5–200 mm, P 1–300 N (log-uniform), E 70–400 GPa, ν −0.3–0.45, μ 0.05–0.8 (sliding)
   or 0.1–0.8, Q/(μP) 0.1–0.9, fretting amplitude 0.2–3 δ*, worn contact radius 1.5–3 a0;
 - the grid: 3.5–10 cells per contact radius (the worn radius for a pin), its half-width
   1.3–2.2 contact radii, at most 81 cells a side (odd or even counts), square or
   rectangular (``Ly``, ``ny`` drawn alike: rectangular cells); the stress planes 1.5
   contact radii deep with 11–31 layers, through the centre or through (x0, y0) up to 0.8
-  contact radii off it, in body b or body a; the static contacts solved by the CG
-  method or by Uzawa's.
+  contact radii off it, in body b or body a, ``z_below`` 0.25–1 contact radii or unset;
+  the solver's ``method`` (CG or, for the static contacts without sliding, Uzawa's),
+  ``tol`` 1e-12–1e-8 (fretting 1e-10–1e-8) and ``max_iter`` 5000–50000, or unset; a
+  ``description``.
+
+Not drawn, and why: ``name`` (the file stem; a directory name, no physics), ``[fem]``
+(it acts on the FEM alone, which the generated cases do not run: hundreds of FEM runs
+are beyond the fast and the full tier), ``[tolerances]`` and ``[not_converged]`` (the
+gate's own settings: the false-alarm rate is that of the defaults), ``[sweep]`` and
+``[quick]`` (each of their points is a case of the kinds above), ``fretting.jump`` (the
+closed form is the first cycle simulated, ``jump = 1``; a jump is verified by the jump
+study, ``tests/test_jump_study.py``), ``sliding_wear`` other than its path (``step``,
+``distance``, ``output_s`` are drawn by the pin's wear).
 """
 
 from __future__ import annotations
@@ -39,6 +52,13 @@ def hertz_radius(R: float, P: float, a: tuple[float, float], b: tuple[float, flo
     """Hertz's contact radius (3PR / 4E*)^(1/3) of materials a, b = (E, ν)."""
     e_star = 1.0 / ((1 - a[1] ** 2) / a[0] + (1 - b[1] ** 2) / b[0])
     return (3.0 * P * R / (4.0 * e_star)) ** (1.0 / 3.0)
+
+
+def mindlin_shift(mu: float, P: float, a0: float, mat: tuple[float, float]) -> float:
+    """Mindlin's rigid shift at full slip δ* = 3μP(2 − ν)/(8 G a0) of each of two
+    identical bodies (E, ν), summed."""
+    G = mat[0] / (2 * (1 + mat[1]))
+    return 3 * mu * P / (16 * a0) * 2 * (2 - mat[1]) / G
 
 
 @st.composite
@@ -64,8 +84,13 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
         mu, q = draw(st.floats(0.1, 0.8)), draw(st.floats(0.1, 0.9))
         angle = draw(st.floats(0.0, 2 * math.pi))
         friction = f"[friction]\nmu = {mu!r}\n"
-        load += (f"Qx = {q * mu * P * math.cos(angle)!r}\n"
-                 f"Qy = {q * mu * P * math.sin(angle)!r}\n")
+        if draw(st.booleans()):  # the tangential load held
+            load += (f"Qx = {q * mu * P * math.cos(angle)!r}\n"
+                     f"Qy = {q * mu * P * math.sin(angle)!r}\n")
+        else:  # a rigid shift, q of Mindlin's full-slip shift δ*
+            shift = q * mindlin_shift(mu, P, a0, mat_a)
+            load += (f"shift_x = {shift * math.cos(angle)!r}\n"
+                     f"shift_y = {shift * math.sin(angle)!r}\n")
     elif kind == "sliding":
         if draw(st.booleans()):
             friction = f"[friction]\nmu = {draw(st.floats(0.05, 0.8))!r}\n"
@@ -76,15 +101,25 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
         load += f"sliding = true\nslide_angle = {draw(st.floats(-180.0, 180.0))!r}\n"
     elif kind == "pin":
         top = 'kind = "sliding_wear"\n'
-        if draw(st.booleans()):
-            friction = f"[friction]\nmu = {draw(st.floats(0.05, 0.8))!r}\n"
+        beta = draw(st.floats(-180.0, 180.0))
+        friction = draw(st.sampled_from([
+            "", f"[friction]\nmu = {draw(st.floats(0.05, 0.8))!r}\nbeta = {beta!r}\n",
+            f"[friction]\nmu1 = {draw(st.floats(0.05, 0.8))!r}\n"
+            f"mu2 = {draw(st.floats(0.05, 0.8))!r}\nbeta = {beta!r}\n"]))
+        if not friction:
+            friction = f"[friction]\nbeta = {beta!r}\n"  # the wear axes, frictionless
         reach = draw(st.floats(1.5, 3.0)) * a0  # the worn radius at the end
         distance = 100.0
-        # Archard with the pin sliding through: a^4 = a0^4 + 4 i P s R / π
+        # Archard with the pin sliding through: a^4 = a0^4 + 4 i_w P s R / π, and
+        # orthotropic wear i_w(θ) = √((i1 cos θ)² + (i2 sin θ)²), θ from e1
         i_w = (reach**4 - a0**4) * math.pi / (4.0 * P * R * distance)
-        body_a = f"i1 = {i_w!r}\n"
+        slide = draw(st.floats(-180.0, 180.0))
+        theta = math.radians(slide - beta)
+        ratio = draw(st.sampled_from([1.0, draw(_log_uniform(0.2, 5.0))]))  # i2 / i1
+        i1 = i_w / math.hypot(math.cos(theta), ratio * math.sin(theta))
+        body_a = f"i1 = {i1!r}\ni2 = {ratio * i1!r}\n"
         n_steps = draw(st.integers(20, 40))
-        load += f"slide_angle = {draw(st.floats(-180.0, 180.0))!r}\n"
+        load += f"slide_angle = {slide!r}\n"
         extra = (f"[sliding_wear]\nstep = {distance / n_steps!r}\ndistance = {distance!r}\n"
                  f"output_s = [{distance / 2!r}]\n")
     elif kind == "fretting":
@@ -93,14 +128,22 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
         friction = f"[friction]\nmu = {mu!r}\n"
         approach = a0**2 / R
         load = f"approach = {approach!r}\n"
-        G = mat_a[0] / (2 * (1 + mat_a[1]))
-        delta_star = 3 * mu * P / (16 * a0) * 2 * (2 - mat_a[1]) / G  # Mindlin, both bodies
+        delta_star = mindlin_shift(mu, P, a0, mat_a)
         i_w = draw(_log_uniform(1e-10, 1e-8))
-        body_a = body_b = f"i1 = {i_w!r}\n"
-        load += f"slide_angle = {draw(st.floats(-180.0, 180.0))!r}\n"  # any direction
+        # orthotropic wear along a principal axis (the closed form's domain): β = φ + k 90°
+        slide = draw(st.floats(-180.0, 180.0))  # any direction
+        beta = slide + 90.0 * draw(st.integers(-2, 2))
+        ratio = draw(st.sampled_from([1.0, draw(_log_uniform(0.2, 5.0))]))  # i2 / i1
+        body_a = body_b = f"i1 = {i_w!r}\ni2 = {ratio * i_w!r}\n"
+        friction += f"beta = {beta!r}\n"
+        load += f"slide_angle = {slide!r}\n"
+        cycles = draw(st.integers(1, 3))  # the closed form is cycle 1's: an output
+        outputs = sorted({1, draw(st.integers(1, cycles))})
         extra = (f"[fretting]\namplitude = {draw(st.floats(0.2, 3.0)) * delta_star!r}\n"
-                 f"steps_per_cycle = {draw(st.sampled_from([8, 12, 20]))}\ncycles = 1\n"
-                 f"output_cycles = [1]\n[solver]\ntol = 1e-8\n")
+                 f"steps_per_cycle = {draw(st.sampled_from([8, 12, 20]))}\n"
+                 f"cycles = {cycles}\noutput_cycles = {outputs}\n"
+                 f"transverse = \"{draw(st.sampled_from(['held', 'free']))}\"\n"
+                 f"[solver]\ntol = {draw(_log_uniform(1e-10, 1e-8))!r}\n")
     cells = draw(st.floats(3.5, 10.0))  # cells per contact radius
     L = 2.0 * reach * draw(st.floats(1.3, 2.2))
     n = max(min(round(L / (a0 / cells)), 81), 9)
@@ -116,8 +159,15 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
         stress += f"x0 = {x0!r}\ny0 = {y0!r}\n"
     if draw(st.booleans()):
         stress += 'body = "a"\n'
-    if kind in ("hertz", "dissimilar", "partial_slip") and draw(st.booleans()):
-        extra += '[solver]\nmethod = "uzawa"\n'
+    if draw(st.booleans()):  # the companion's depth set by hand, within the planes
+        stress += f"z_below = {draw(st.floats(0.25, 1.0)) * reach!r}\n"
+    if kind != "fretting" and draw(st.booleans()):
+        method = '"uzawa"' if kind in ("hertz", "dissimilar", "partial_slip") and \
+            draw(st.booleans()) else '"cg"'
+        extra += (f"[solver]\nmethod = {method}\ntol = {draw(_log_uniform(1e-12, 1e-8))!r}\n"
+                  f"max_iter = {draw(st.integers(5000, 50000))}\n")
+    if draw(st.booleans()):
+        top = f'description = "generated {kind}"\n' + top
     return (top + f"[materials.a]\nE = {mat_a[0]!r}\nnu = {mat_a[1]!r}\n{body_a}"
             f"[materials.b]\nE = {mat_b[0]!r}\nnu = {mat_b[1]!r}\n{body_b}"
             f"[geometry]\nR = {R!r}\n[grid]\n{grid}{friction}"

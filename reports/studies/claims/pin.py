@@ -92,9 +92,29 @@ def worn_pin(art: Article) -> Finding:
                    {"worst_margin": float(worst["value"] / worst["tolerance"])})
 
 
+def _axis_max(art: Article, source: str, solver: str, param: str, step: int) -> float:
+    """The largest σ_VM on the axis x = y = 0 over the stress planes of a step that
+    contain it (NaN without one)."""
+    found = art.case(source).steps(solver, param).get(step)
+    stress = art.case(source).point(param).get("stress", {})
+    through = {"xz": float(stress.get("y0", 0.0)), "yz": float(stress.get("x0", 0.0))}
+    best = math.nan
+    for name, plane in (found.planes.items() if found is not None else ()):
+        if through.get(name, math.nan) != 0.0:
+            continue  # a plane off the axis
+        i = int(np.argmin(np.abs(plane.s)))
+        if abs(plane.s[i]) <= 1e-12 * max(1.0, float(np.abs(plane.s).max())):
+            best = float(np.nanmax([best, np.nanmax(plane.fields["vm"][i])]))
+    return best
+
+
 def frictionless_depth(art: Article) -> Finding:
     """Claim 3: the frictionless worn pin's σ_VM,max falls with s and moves deeper than
-    z/a0 = 0.48, staying on the axis."""
+    z/a0 = 0.48, staying on the axis: a maximum sampled off the axis (beyond two half
+    cells) leaves it only where σ_VM on the axis is lower by more than the maximum's
+    uncertainty — on a flat plateau the axis is as much the maximum's place as the
+    sample that happens to be largest (the near-maximum set of
+    :mod:`reports.compare.maxima`)."""
     src, out, series, bad = "pin", [], {"vm": {}, "z": {}}, []
     for solver in art.base_solvers(src):
         r = art.rows(src, solver)
@@ -114,11 +134,16 @@ def frictionless_depth(art: Article) -> Finding:
             bad.append(f"{solver}: σ_VM,max grows at some s")
         if np.any(np.diff(z) < -2 * dz) or z[-1] <= z[0]:
             bad.append(f"{solver}: the maximum does not move deeper")
-        if np.any(off > 2 * dx):
-            bad.append(f"{solver}: the maximum leaves the axis ({fmt(off.max() / a0)} a0)")
+        axis = np.array([_axis_max(art, src, solver, param, int(k)) for k in r["step"]])
+        left = (off > 2 * dx) & ~(vm - axis <= u)
+        if np.any(left):
+            bad.append(f"{solver}: the maximum leaves the axis ({fmt(off[left].max() / a0)} "
+                       f"a0, σ_VM on the axis {fmt(np.max((vm - axis)[left] / vm[left]), 2)} "
+                       "lower)")
         out.append(f"{solver}: σ_VM,max/p0 {fmt(vm[0] / p0)} → {fmt(vm[-1] / p0)}, z/a0 "
                    f"{fmt(z[0] / a0)} → {fmt(z[-1] / a0)} (s {s[0]:g} → {s[-1]:g} mm), at "
-                   f"most {fmt(off.max() / a0)} a0 off the axis")
+                   f"most {fmt(off.max() / a0)} a0 off the axis, where σ_VM is within "
+                   f"{fmt(np.max((vm - axis) / vm), 2)} of it")
     if not out:
         return undecided("no σ_VM of the frictionless worn pin (μ = 0) over s")
     panels = (Panel("σ_VM,max of the frictionless pin", "s / a0", "σ_VM,max / p0",
