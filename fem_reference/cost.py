@@ -43,14 +43,17 @@ DENSE_COPIES = 4  # m x m float64 arrays alive while C_rel, its factor and K_rel
 SECONDS_BASE = 2.0  # start-up, imports and writing the results
 SECONDS_PER_TET_MESH = 2e-5
 SECONDS_PER_TET_ASSEMBLY = 1.2e-4
-SECONDS_FACTOR = 2.0e-9  # times n²
-SECONDS_CONDENSE = 5.5e-10  # times n^(4/3) per condensed column
-SECONDS_DENSE = 1.2e-10  # times m³ (C_rel Cholesky, K_rel)
+SECONDS_FACTOR = 1.33e-9  # times n²
+SECONDS_CONDENSE = 3.6e-10  # times n^(4/3) per condensed column
+SECONDS_DENSE = 6.5e-11  # times m³ (C_rel Cholesky, K_rel)
 SECONDS_CONTACT = 1.1e-10  # times A³ per Newton iteration (A DOFs in contact) ...
 SECONDS_CONTACT_M2 = 2e-9  # ... + m² (dense products, line search): fem.contact = augmented
 #: the semi-smooth solve (fem.contact = semismooth): times A² per contact solve (a few
-#: iterations, each a GMRES solve preconditioned by kept LU factors or a new LU)
-SECONDS_SEMISMOOTH = 1.3e-7
+#: iterations, each a GMRES solve preconditioned by kept LU factors or a new LU) ...
+SECONDS_SEMISMOOTH = 4.5e-8
+#: ... times this in fretting in partial slip (the stick edge moves at every step: more
+#: Newton iterations a solve than in gross slip)
+PARTIAL_SLIP_SOLVES = 3.9
 SECONDS_OUTPUT = 0.3  # per output step (recovery, stress planes, .vtu)
 #: the calibration of the time estimate: the calibration runs' wall times lie within
 #: this factor of it (benchmarks/README.md, tests/test_fem_cost.py)
@@ -254,7 +257,8 @@ def _breakdown(case: Case) -> Breakdown:
         "factorisation": n_factors * SECONDS_FACTOR * n * n,
         "condensation": n_nu * SECONDS_CONDENSE * n ** (4.0 / 3.0) * m,
         "dense": SECONDS_DENSE * m**3,
-        "contact": solves * (SECONDS_SEMISMOOTH * A**2 if case.fem.contact == "semismooth"
+        "contact": solves * (SECONDS_SEMISMOOTH * A**2 * semismooth_factor(case)
+                             if case.fem.contact == "semismooth"
                              else iterations * (SECONDS_CONTACT * A**3
                                                 + SECONDS_CONTACT_M2 * m * m)),
         "output": SECONDS_OUTPUT * outputs,
@@ -263,6 +267,26 @@ def _breakdown(case: Case) -> Breakdown:
                      contact_dofs=float(A),
                      memory={k: _finite_or_inf(v) for k, v in memory.items()},
                      seconds={k: _finite_or_inf(v) for k, v in seconds.items()})
+
+
+def semismooth_factor(case: Case) -> float:
+    """:data:`PARTIAL_SLIP_SOLVES` for fretting in partial slip, else 1.  The regime is
+    Mindlin's: partial slip while the amplitude is below the shift of full slip
+    δ* = 3 μ P / (16 a) Σ (2 − ν_i) / G_i (Hertz's P and a at the held load or approach;
+    μ the friction along the path, the radius of the friction ellipse in its direction)."""
+    fr = case.fretting
+    if case.kind != "fretting" or fr is None:
+        return 1.0
+    f = case.friction
+    theta = math.radians(case.load.slide_angle - f.beta)
+    if min(f.mu1, f.mu2) <= 0:
+        return 1.0
+    mu = 1.0 / math.hypot(math.cos(theta) / f.mu1, math.sin(theta) / f.mu2)
+    a0, p0 = case.hertz_scales
+    P = 2.0 * math.pi * a0 * a0 * p0 / 3.0
+    compliance = sum((2.0 - b.nu) * 2.0 * (1.0 + b.nu) / b.E for b in (case.a, case.b))
+    delta_star = 3.0 * mu * P / (16.0 * a0) * compliance
+    return PARTIAL_SLIP_SOLVES if fr.amplitude < delta_star else 1.0
 
 
 def _finite_or_inf(value: float) -> float:

@@ -45,7 +45,7 @@ import numpy as np
 from .normal import ContactNotConverged
 from .tangential import TangentialSolution
 
-INNER_TOL_FACTOR = 1e-2
+INNER_TOL_FACTOR = 5e-3  # chosen on a sweep of ten problems: benchmarks/README.md
 INNER_TOL_MAX = 1e-4
 FINAL_TOL_FACTOR = 1.0
 TOL_FLOOR = 1e-15

@@ -55,6 +55,15 @@ FRETTING_GROSS = _fretting(2.0 * 2.4285714e-3)
 OFF_CENTRE_PLANE = _static(5.754602676005731, 1.0, 70000.0, 0.0, 0.14932210681495445, 12,
                            "P = 1.0\n", "", 0.07466105340747722).replace(
     "nz = 31\n", "nz = 11\nx0 = 0.0\ny0 = 0.03733052670373861\n")
+#: found by the full-tier draw of 2026-11-28: full sliding at μ = 0.5 on 20 × 32 cells,
+#: the yz plane 0.75 a off the axis, whose surface point 0.5 cell from the contact
+#: boundary lay 1.5 cells along the plane from its crossing (vm_yz max 0.104 against
+#: 0.10): the planes' edge band is now measured in space
+OFF_CENTRE_SLIDING = _static(7.38905609893065, 1.0, 70000.0, 0.0, 0.21639840344028732, 20,
+                             "P = 1.0\nsliding = true\nslide_angle = 0.0\n",
+                             "[friction]\nmu = 0.5\n", 0.08114940129010775).replace(
+    "nx = 20\n", "nx = 20\nLy = 0.21639840344028732\nny = 32\n").replace(
+    "nz = 31\n", "nz = 11\nx0 = 0.04057470064505388\ny0 = 0.0\n")
 PEER_PARTIAL_SLIP = _static(50.0, 9.1954, 2 * 200.0 * 1.42, 0.42, 2.4, 97,
                             f"P = 9.1954\nQx = {-0.875 * 0.4 * 9.1954!r}\n",
                             "[friction]\nmu = 0.4\n", 1.2)
@@ -88,6 +97,7 @@ def _check(text: str, tmp_path_factory) -> None:
 @example(text=FRETTING_GROSS)
 @example(text=PEER_PARTIAL_SLIP)
 @example(text=OFF_CENTRE_PLANE)
+@example(text=OFF_CENTRE_SLIDING)
 def test_a_correct_solver_passes_the_gate_on_cases_nobody_bundled(text, tmp_path_factory):
     _check(text, tmp_path_factory)
 

@@ -48,7 +48,9 @@ MESH_THEN = {"cattaneo_mindlin": {"fem.h": 0.125, "fem.h_surface": 0.125}}
 # the worst ratios of estimate and measurement over the calibration table, with margin
 SIZE_FACTOR = 1.25  # measured: tets 1.14, DOFs 1.18, m 1.05
 MEMORY_FACTOR = 1.3  # measured 1.19
-TIME_FACTOR = cost.TIME_FACTOR  # measured 1.77: the deadline of a FEM run holds to it
+#: estimate / wall time on every row (issue 47; measured 0.76-1.31 after the refit of
+#: 2026-11-28: benchmarks/README.md, "The FEM's cost estimate")
+TIME_RANGE = (0.7, 1.5)
 
 
 def _ratio(a: float, b: float) -> float:
@@ -67,7 +69,7 @@ def test_estimate_matches_the_calibration_runs(name, point, tets, dofs, m, peak_
             assert _ratio(estimated, measured) < SIZE_FACTOR
     if peak_mb is not None:
         assert _ratio(c.memory / MB, peak_mb) < MEMORY_FACTOR
-    assert _ratio(c.seconds, wall_s) < TIME_FACTOR
+    assert TIME_RANGE[0] <= c.seconds / wall_s <= TIME_RANGE[1]
     assert c.memory == b.peak and c.seconds == pytest.approx(b.total_seconds)
     assert c.memory_keys[0] == "fem.h" and c.time_keys[0] == "fem.h"
 
@@ -157,3 +159,15 @@ def test_planner_accepts_the_bundled_quick_case():
 
     plan = plan_case("hertz", ["fem"], quick=True, limits=Limits(memory=4 * 2**30))
     assert plan.units() == [(0, "fem")]
+
+
+def test_fretting_regime_of_the_semismooth_cost():
+    """Partial slip costs more solves' work (``cost.PARTIAL_SLIP_SOLVES``) where Mindlin's
+    δ* exceeds the amplitude: the bundled isotropic points are 0.5 and 1.5 δ* (their
+    case file), the orthotropic β = 0 point slides along μ1 = 0.1 at 4.1 δ*, β = 90 along
+    μ2 = 0.65 at 0.63 δ*; a static case is 1."""
+    iso = load_case("fretting_isotropic", quick=True)
+    ortho = load_case("fretting_orthotropic", quick=True)
+    assert [cost.semismooth_factor(c) for c in iso] == [cost.PARTIAL_SLIP_SOLVES, 1.0]
+    assert [cost.semismooth_factor(c) for c in ortho[:2]] == [1.0, cost.PARTIAL_SLIP_SOLVES]
+    assert cost.semismooth_factor(load_case("hertz", quick=True)[0]) == 1.0

@@ -3,7 +3,7 @@
 Both solvers' σ_VM planes are sampled on common points (:mod:`reports.compare.sampling`).
 
 Value.  ``vm_max`` compares the two maxima over the points *off the edge band* — farther
-than one cell from either solver's contact boundary on the surface line, as the max norms
+than one cell from either solver's contact boundary (in space), as the max norms
 of the planes do.  At the edge a contact whose tractions fall to zero inside a cell (or,
 worn, drop as a step) has a surface σ_VM with a cusp or a log singularity that no sample
 held a cell apart resolves: the sliding sphere's trailing edge, the first fretting

@@ -13,6 +13,7 @@ from collections.abc import Sequence
 import numpy as np
 from scipy import ndimage
 from scipy.interpolate import RegularGridInterpolator
+from scipy.spatial import cKDTree
 
 from cases.result import SLIP, STICK, StepResult
 
@@ -123,6 +124,34 @@ def stick_edges(step: StepResult, s: np.ndarray, line: tuple[np.ndarray, np.ndar
     stick, slip = stick.ravel(), slip.ravel()
     k = np.flatnonzero((stick[:-1] & slip[1:]) | (slip[:-1] & stick[1:]))
     return 0.5 * (s[k] + s[k + 1])
+
+
+def contact_boundary(step: StepResult) -> np.ndarray:
+    """The contact boundary of a step on its surface grid, as points (n, 2): the midpoints
+    between a sample with p_n > 0 and a neighbour along x or y without; empty without a
+    surface pressure."""
+    if not step.surface or "p_n" not in step.surface:
+        return np.empty((0, 2))
+    on = np.nan_to_num(np.asarray(step.surface["p_n"], dtype=float)) > 0
+    x, y = np.asarray(step.x, dtype=float), np.asarray(step.y, dtype=float)
+    i, j = np.nonzero(on[1:, :] != on[:-1, :])
+    along_x = np.column_stack([0.5 * (x[i] + x[i + 1]), y[j]])
+    i, j = np.nonzero(on[:, 1:] != on[:, :-1])
+    along_y = np.column_stack([x[i], 0.5 * (y[j] + y[j + 1])])
+    return np.concatenate([along_x, along_y])
+
+
+def off_boundary(line: np.ndarray, z: np.ndarray, boundary: np.ndarray, width: float
+                 ) -> np.ndarray:
+    """Plane points farther than ``width`` from every contact boundary point: ``line``
+    (n, 2) the plane's surface points (x, y), ``z`` its depths, ``boundary`` (m, 2) the
+    boundary's surface points (:func:`contact_boundary`).  The distance is the true one
+    in space, so that a plane crossing the boundary obliquely (off the centre) leaves out
+    the points the boundary passes near, not only those near its crossing."""
+    if boundary.size == 0:
+        return np.ones((len(line), z.size), dtype=bool)
+    d, _ = cKDTree(boundary).query(line)
+    return np.hypot(np.asarray(d)[:, None], z[None, :]) > width
 
 
 def off_edges(s: np.ndarray, z: np.ndarray, edges: np.ndarray, width: float) -> np.ndarray:
