@@ -20,9 +20,10 @@ sample spacing) of either solver's contact boundary, by their distance in space 
 boundary's surface points, so that a plane off the centre, which crosses the boundary
 obliquely, leaves out what passes near it (a sliding sphere at μ = 0.5, the yz plane
 0.75 a off the axis on 20 × 32 cells: vm_yz max 0.104 against 0.10 at the point 0.5
-cell from the boundary and 1.5 cells along the plane from its crossing): at a worn frictional edge the surface stress is
-log-singular (docs/formulation.md §2.6), the neighbourhood of the singularity carries
-most of the difference and no grid settles it (worn pin, quick set-up, μ = 0.5,
+cell from the boundary and 1.5 cells along the plane from its crossing): at a worn
+frictional edge the surface stress is log-singular (docs/formulation.md §2.6), the
+neighbourhood of the singularity carries most of the difference and no grid settles it
+(worn pin, quick set-up, μ = 0.5,
 s = 160 mm: ic 41² against ic 161² 0.030 with the band, 0.015 without; the FEM 0.040
 and 0.010).  The σ_VM maximum and its location are compared by
 :mod:`reports.compare.maxima`.

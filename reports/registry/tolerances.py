@@ -30,9 +30,10 @@ Metrics, with A the first and B the second (reference) solver of the pair:
 |p_t| = √(p_x² + p_y²), so a component that is nearly zero in both is not inflated);
 max norms leave out the *edge band*, the sample points within one cell of either
 solver's contact boundary (on the planes: within one cell, the coarser sample spacing,
-of the boundary's surface points, by the distance in space), where a cell average and a point value of a traction that drops to zero inside
-the cell differ by a fraction of the traction itself — O(1) for the step-like pressure
-edge of a worn contact at any grid size (:mod:`reports.compare.metrics`); the L2 norms of
+of the boundary's surface points, by the distance in space), where a cell average and a
+point value of a traction that drops to zero inside the cell differ by a fraction of the
+traction itself — O(1) for the step-like pressure edge of a worn contact at any grid
+size (:mod:`reports.compare.metrics`); the L2 norms of
 the tractions, the semi-widths and the contact area still measure the edge; the plane
 norms leave the band out and are taken over the points within one contact half-chord of
 the contact (its neighbourhood: the norms do not depend on how far a case's planes
