@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import pandas as pd
@@ -22,12 +22,12 @@ from reports.run.sweep import plan_sweep
 from reports.run.threshold_table import existing
 from reports.store import layout
 from reports.studies.claims.sources import (
-    ARTICLE,
     ARTICLE_NX,
+    FRETTING_FREE,
+    FRETTING_LOAD,
+    FRETTING_LOAD_FREE,
     NEEDS,
     SOURCES,
-    THRESHOLDS,
-    ThresholdSpec,
     candidates,
     find,
     of_tier,
@@ -37,6 +37,40 @@ from reports.studies.events import EventOptions
 #: the solvers a threshold of the claims runs (the FEM's thresholds are on request:
 #: ``contact-vv threshold ... --solver fem``)
 THRESHOLD_SOLVERS = ("ic", "analytic")
+
+
+@dataclass(frozen=True)
+class ClaimThreshold:
+    """One ``contact-vv threshold`` a claim reads: its ``request`` (case, key, event,
+    bracket, resolution and grid factors; the tier, solvers and limits are the article
+    run's), the article's own grid added where ``article_grid`` (81 cells a side), and with
+    ``every_output`` one bisection after each of ``cycles`` and each output cycle of the
+    case, each run cut there."""
+
+    claim: int
+    request: th.Request
+    article_grid: bool = False
+    every_output: bool = False
+    cycles: tuple[int, ...] = ()  # outputs added to the case's (fretting)
+
+
+def _request(case: str, param: str, event: str, lo: float, hi: float, resolution: float,
+             grids: tuple[float, ...]) -> th.Request:
+    return th.Request(case=case, param=param, event=event, lo=lo, hi=hi,
+                      resolution=resolution, grids=grids, solvers=THRESHOLD_SOLVERS,
+                      explicit=False)
+
+
+THRESHOLDS = (
+    # claim 4: where the sliding sphere's σ_VM maximum reaches the surface (s = 0)
+    ClaimThreshold(4, _request("sliding_friction", "friction.mu", "vm_max_on_surface", 0.2,
+                               0.5, 0.005, (1.0 / 1.5, 1.0, 2.0)), article_grid=True),
+    # claim 13: the fretting regime change in β, under both normal controls, with the
+    # transverse motion held and free
+    *(ClaimThreshold(13, _request(case, "friction.beta", "gross_to_partial_slip", 45.0, 90.0,
+                                  1.0, (1.0 / 1.5, 1.0)), every_output=True, cycles=(1, 100))
+      for case in ("fretting_orthotropic", FRETTING_LOAD, FRETTING_FREE, FRETTING_LOAD_FREE)),
+)
 
 
 @dataclass
@@ -68,24 +102,26 @@ def _cost(work: Work, solver: str, case, times: float) -> None:
         work.seconds += times * cost.seconds
 
 
-def _have(table: pd.DataFrame | None, case: str, spec: ThresholdSpec, at: str,
+def _have(table: pd.DataFrame | None, case: str, spec: ClaimThreshold, at: str,
           quick: bool) -> bool:
     """Whether thresholds.csv already holds the ic rows of a threshold."""
     if table is None or table.empty:
         return False
-    t = table[(table["case"] == case) & (table["event"] == spec.event)
-              & (table["param"] == spec.param) & (table["solver"] == "ic")
+    r = spec.request
+    t = table[(table["case"] == case) & (table["event"] == r.event)
+              & (table["param"] == r.param) & (table["solver"] == "ic")
               & of_tier(table, quick) & table["threshold"].notna()]
     return bool(len(t[t["at"].astype(str) == at])) if at else bool(len(t))
 
 
-def threshold_requests(spec: ThresholdSpec, quick: bool, chosen: list[str],
+def threshold_requests(spec: ClaimThreshold, quick: bool, chosen: list[str],
                        limits: Limits) -> list[tuple[th.Request, str]]:
     """The requests of one threshold the claims read, with the ``at`` label each writes."""
-    case = load_case(spec.case, quick=quick)[0]
-    grids = tuple(dict.fromkeys(ARTICLE_NX / case.grid.nx if g == ARTICLE else float(g)
-                                for g in spec.grids))
-    names = tuple(s for s in THRESHOLD_SOLVERS if s in chosen)
+    base = spec.request
+    case = load_case(base.case, quick=quick)[0]
+    grids = tuple(sorted({*base.grids, *([ARTICLE_NX / case.grid.nx] if spec.article_grid
+                                         else [])}))
+    names = tuple(s for s in base.solvers if s in chosen)
     outputs = [None]
     if spec.every_output and case.fretting is not None:
         outputs = sorted({*spec.cycles, *(int(c) for c in case.fretting.output_cycles)})
@@ -95,11 +131,10 @@ def threshold_requests(spec: ThresholdSpec, quick: bool, chosen: list[str],
         if n is not None and case.fretting.jump > n / 4:
             # fewer cycles than four jumps: a jump of a quarter of them (one: none)
             overrides["fretting.jump"] = float(max(1, n // 4))
-        out.append((th.Request(case=spec.case, param=spec.param, event=spec.event,
-                               lo=spec.lo, hi=spec.hi, resolution=spec.resolution,
-                               grids=grids, solvers=names, quick=quick, overrides=overrides,
-                               options=EventOptions("" if n is None else str(n)),
-                               limits=limits, explicit=False),
+        out.append((replace(base, grids=grids, solvers=names, quick=quick,
+                            overrides=overrides,
+                            options=EventOptions("" if n is None else str(n)),
+                            limits=limits),
                     "" if n is None else f"cycle={n}"))
     return out
 
@@ -131,13 +166,13 @@ def plan(out: Path, quick: bool, chosen: list[str], limits: Limits,
     for spec in THRESHOLDS:
         if spec.claim not in claims:
             continue
-        name = load_case(spec.case, quick=quick)[0].name
+        name = load_case(spec.request.case, quick=quick)[0].name
         for request, at in threshold_requests(spec, quick, chosen, limits):
             if _have(table, name, spec, at, quick):
                 continue
             work.requests.append(request)
-            case = load_case(spec.case, quick=quick, overrides=request.overrides)[0]
-            bisections = 2 + math.ceil(math.log2((spec.hi - spec.lo) / spec.resolution))
+            case = load_case(request.case, quick=quick, overrides=request.overrides)[0]
+            bisections = 2 + math.ceil(math.log2((request.hi - request.lo) / request.resolution))
             for s in request.solvers:
                 _cost(work, s, case, bisections * sum(max(g, 1.0) ** 2 for g in request.grids))
     return work

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -118,9 +118,10 @@ class Limits:
                 "--max-hours)")
 
 
-@dataclass
+@dataclass(frozen=True)
 class CasePlan:
-    """What to run for one case: its sweep points and the solvers that apply."""
+    """What to run for one case: its sweep points and the solvers that apply.  Built once
+    (:func:`plan_case`); a changed plan is a new one (``dataclasses.replace``)."""
 
     name: str
     source: Path
@@ -131,7 +132,7 @@ class CasePlan:
     overrides: dict[str, Any] = field(default_factory=dict)
     sweep: dict[str, Any] | None = None
     dir_name: str = ""
-    staging: Path | None = None  # set by the runner: where output steps are streamed
+    staging: Path | None = None  # where output steps are streamed (the runner's copy)
     convergence: bool = False  # run --convergence: grid studies (reports.studies.gridstudy)
     grids: list[Any] = field(default_factory=list)  # their coarse runs (GridRun)
     jump_study: bool = False  # run --jump-study: cycle-jump studies (reports.studies.jumpstudy)
@@ -152,20 +153,23 @@ class CasePlan:
 PARTNER = "mirror"
 
 
-def _add_partner(plan: CasePlan) -> None:
-    """Where a point of a run has no pair to compare (one numerical solver, no closed
-    form, the FEM not run by default or not named), that solver's exact :data:`PARTNER`
-    relation runs too, where it applies: a case the gate verifies nothing of fails it."""
+def _add_partner(plan: CasePlan) -> CasePlan:
+    """``plan``, where a point of a run has no pair to compare (one numerical solver, no
+    closed form, the FEM not run by default or not named), with that solver's exact
+    :data:`PARTNER` relation, where it applies: a case the gate verifies nothing of fails
+    it."""
     lonely = [c for c in plan.points if not pairs(plan.applicable(c))]
     for base in dict.fromkeys(s for c in lonely for s in plan.applicable(c)):
         partner = f"{base}+{PARTNER}"
         if partner in plan.solvers or partner not in solvers.names() or \
                 any(solvers.unsupported(partner, c) is not None for c in lonely):
             continue
-        plan.solvers = [s for s in solvers.names() if s in plan.solvers or s == partner]
-        plan.warnings.append(f"{plan.name}: no other solver compares with {base} on this "
-                             f"case; its exact relation {partner} runs too (one more run "
-                             f"of {base}), so that the gate verifies something")
+        plan = replace(
+            plan, solvers=[s for s in solvers.names() if s in plan.solvers or s == partner],
+            warnings=[*plan.warnings, f"{plan.name}: no other solver compares with {base} on "
+                      f"this case; its exact relation {partner} runs too (one more run of "
+                      f"{base}), so that the gate verifies something"])
+    return plan
 
 
 def select_solvers(requested: list[str] | None, *, relations: bool = True
@@ -241,25 +245,25 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
             warnings.append(w)
     _check_point_dirs(points)
     name = points[0].name
-    plan = CasePlan(name=name, source=source, points=points, solvers=list(solver_names),
-                    skipped=dict(skipped or {}), quick=quick, overrides=dict(overrides or {}),
-                    sweep=sweep, dir_name=dir_name or name, warnings=warnings)
-    for s in plan.solvers:
+    chosen, skipped = list(solver_names), dict(skipped or {})
+    for s in chosen:
         reasons = [solvers.unsupported(s, c) for c in points]
         if all(r is not None for r in reasons):
-            plan.skipped[s] = reasons[0]
+            skipped[s] = reasons[0]
     if not explicit:
-        for s in [s for s in plan.solvers if s not in plan.skipped]:
+        for s in [s for s in chosen if s not in skipped]:
             reason = next((r for c in points if (r := solvers.not_by_default(s, c))), None)
             if reason is not None:
-                plan.skipped[s] = reason
-                plan.solvers.remove(s)
-    _add_partner(plan)  # named solvers that compare nothing get the exact relation too
+                skipped[s] = reason
+                chosen.remove(s)
+    plan = _add_partner(CasePlan(  # named solvers that compare nothing get the exact relation
+        name=name, source=source, points=points, solvers=chosen, skipped=skipped,
+        quick=quick, overrides=dict(overrides or {}), sweep=sweep, dir_name=dir_name or name,
+        warnings=warnings, limits=limits or Limits()))
     if not plan.units():  # a run of nothing would write an empty case that gates nothing
         why = "; ".join(f"{s}: {r}" for s, r in plan.skipped.items() if s in solver_names)
         raise CaseError(f"{source}: none of the solvers {', '.join(solver_names)} runs this "
                         f"case ({why or 'no solver chosen'})")
-    limits = plan.limits = limits or Limits()
     for i, s in plan.units():
-        limits.check(points[i], s)
+        plan.limits.check(points[i], s)
     return plan

@@ -27,8 +27,7 @@ import json
 import os
 import time
 import traceback
-from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -42,7 +41,7 @@ from reports.registry.errors import UserError
 from reports.registry.tolerances import TOLERANCE_COLUMNS
 from reports.run import study_runs
 from reports.run.plan import CasePlan
-from reports.run.units import UnitOutcome, failure_line, serial_executor
+from reports.run.units import Executor, UnitOutcome, failure_line, serial_executor
 from reports.store import layout, manifest
 from reports.store.event_table import events_frame
 from reports.store.staging import case_lock, claim_staging, remove_dir
@@ -63,9 +62,6 @@ class CaseRun:
     metrics: pd.DataFrame | None = None
 
 
-Executor = Callable[[CasePlan, list[tuple[int, str]], bool], Iterable[UnitOutcome]]
-
-
 @dataclass
 class _Collected:
     """What the units of a case produced so far: summary rows per (point, solver),
@@ -81,7 +77,7 @@ class _Collected:
 
 def _failed(outcome: UnitOutcome, what: str, exc: Exception) -> UnitOutcome:
     """``outcome`` turned into an internal failure: ``what`` failed with ``exc``."""
-    return dataclasses.replace(outcome, result=None, kind="internal",
+    return replace(outcome, result=None, kind="internal",
                                detail=traceback.format_exc(),
                                error=f"{what} failed: {type(exc).__name__}: {exc}")
 
@@ -191,7 +187,7 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
                             "a file a run writes); refusing to replace it (choose another "
                             "--out)")
     staging = claim_staging(out, plan.dir_name)
-    plan.staging = staging
+    plan = replace(plan, staging=staging)
     remove_dir(final)  # an older result must not outlive a newer, failing run
 
     got = _collect(plan, staging, executor, progress)

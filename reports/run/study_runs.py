@@ -5,10 +5,9 @@ executor without fields, and turned into ``convergence.csv`` and ``jump_study.cs
 
 from __future__ import annotations
 
-import dataclasses
 import math
-from collections.abc import Callable, Iterable
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import pandas as pd
@@ -17,7 +16,7 @@ from tqdm.auto import tqdm
 from cases.model import Case, CaseError
 from reports.registry import solvers
 from reports.run.plan import CasePlan, Limits, check_fits
-from reports.run.units import UnitOutcome
+from reports.run.units import Executor
 from reports.store.study_tables import CONVERGENCE_COLUMNS, JUMP_COLUMNS
 from reports.store.write import jsonable
 from reports.studies.gridstudy import RATIO, STUDIED, changes, coarse_cases, study_row, value_of
@@ -46,9 +45,7 @@ def grid_studied(plan: CasePlan) -> list[tuple[int, str]]:
 
 def add_grids(plan: CasePlan, limits: Limits | None = None) -> CasePlan:
     """``plan`` with the grid studies of ``run --convergence``: :func:`plan_grids`."""
-    plan.convergence = True
-    plan.grids = plan_grids(plan, limits)
-    return plan
+    return replace(plan, convergence=True, grids=plan_grids(plan, limits))
 
 
 def add_grid_studies(plans: list[CasePlan], limits: Limits | None) -> list[CasePlan]:
@@ -107,9 +104,6 @@ class Study:
     table: pd.DataFrame | None = None
 
 
-Executor = Callable[[CasePlan, list[tuple[int, str]], bool], Iterable[UnitOutcome]]
-
-
 def run_grids(plan: CasePlan, executor: Executor, progress: bool | None,
               fine_rows: dict[tuple[int, str], list[dict[str, Any]]]) -> Study:
     """Run the coarse grids of ``plan`` through ``executor`` (fields not written) and
@@ -127,7 +121,7 @@ def run_levels(plan: CasePlan, runs: list[Any], executor: Executor, progress: bo
     case``) through ``executor`` without fields: their summary rows (or why there are
     none) keyed (point, solver, level), and their manifest records, with ``describe``'s
     keys, in the planned order."""
-    sub = dataclasses.replace(plan, points=[g.case for g in runs], staging=None,
+    sub = replace(plan, points=[g.case for g in runs], staging=None,
                               grids=[], jumps=[])
     units = [(k, g.solver) for k, g in enumerate(runs)]
     study = Study()
@@ -192,7 +186,6 @@ def grid_table(plan: CasePlan, fine_rows: dict[tuple[int, str], list[dict[str, A
 def add_jumps(plan: CasePlan, limits: Limits | None = None) -> CasePlan:
     """``plan`` with the runs of its jump studies, checked against ``limits`` and the
     solvers' support before any work (``CaseError`` naming the level)."""
-    plan.jump_study = True
     runs = []
     for i, s in plan.units():
         case = plan.points[i]
@@ -210,8 +203,7 @@ def add_jumps(plan: CasePlan, limits: Limits | None = None) -> CasePlan:
             except CaseError as exc:
                 raise CaseError(f"--jump-study: {where}: {exc}") from None
             runs.append(GridRun(i, s, level, c))
-    plan.jumps = runs
-    return plan
+    return replace(plan, jump_study=True, jumps=runs)
 
 
 def jump_studied(plan: CasePlan) -> list[tuple[int, str]]:

@@ -35,8 +35,8 @@ from reports.registry import solvers
 from reports.registry.errors import UserError
 from reports.registry.record import grid_cell
 from reports.registry.tolerances import check_keys
-from reports.run.deadline import deadline
 from reports.run.plan import Limits, check_fits
+from reports.run.units import run_unit
 from reports.studies import events
 from reports.studies.events import EventOptions, EventUndefined, Exact, bisect, event
 
@@ -162,15 +162,17 @@ class Unit:
         r = self.request
         case = self.case(value)
         t0 = time.perf_counter()
-        try:
-            with deadline((r.limits or Limits()).deadline(case, self.solver),
-                          f"the run at {r.param} = {value:g}"):
-                result = solvers.resolve(self.solver)(case, progress=False, on_output=None)
-        except CaseError as exc:  # e.g. the contact reaches the grid edge: a user error
+        outcome = run_unit(solvers.resolve(self.solver), case, self.solver, self.point,
+                           progress=False, on_output=None,
+                           limit_s=(r.limits or Limits()).deadline(case, self.solver))
+        if outcome.result is None:
             where = f" [{self.point_label}]" if self.point_label else ""
-            raise CaseError(f"solver {self.solver}{where} at {r.param} = {value:g} on "
-                            f"{grid_label(self.solver, case)}: {exc}") from None
-        step, self.at_label = events.select_step(result, case, r.options.at)
+            text = (f"solver {self.solver}{where} at {r.param} = {value:g} on "
+                    f"{grid_label(self.solver, case)}: {outcome.error}")
+            # a case the solver rejects (e.g. the contact reaches the grid edge) is the
+            # user's error; a solver that fails is a failed row (its row names where)
+            raise CaseError(text) if outcome.kind == "case" else RuntimeError(outcome.error)
+        step, self.at_label = events.select_step(outcome.result, case, r.options.at)
         verdict = event(r.event).test(step, r.options)
         dt = time.perf_counter() - t0
         self.evaluations, self.wall_s = self.evaluations + 1, self.wall_s + dt

@@ -7,7 +7,7 @@ from __future__ import annotations
 import math
 import time
 import traceback
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -37,6 +37,11 @@ class UnitOutcome:
     detail: str = ""
     cell_size: float = math.nan  # the solver's representative cell size [mm]
     steps_written: int = 0  # output steps already saved as they were computed
+
+
+#: how the units of a plan are run (in this process, :func:`serial_executor`; on a Dask
+#: cluster, :class:`reports.run.sweep.DaskExecutor`): (plan, units, progress) -> outcomes
+Executor = Callable[[CasePlan, list[tuple[int, str]], bool], Iterable[UnitOutcome]]
 
 
 #: scalars a numerical solver must report as finite numbers when it reports them

@@ -65,36 +65,6 @@ SOURCES: dict[str, Source] = {
 }
 
 
-
-@dataclass(frozen=True)
-class ThresholdSpec:
-    """One ``contact-vv threshold`` a claim reads: ``grids`` are refinement factors
-    (:data:`ARTICLE` stands for the article's grid); with ``every_output`` one bisection
-    after each of ``cycles`` and each output cycle of the case, each run cut there."""
-
-    claim: int
-    case: str
-    param: str
-    event: str
-    lo: float
-    hi: float
-    resolution: float
-    grids: tuple[float | str, ...]
-    every_output: bool = False
-    cycles: tuple[int, ...] = ()  # outputs added to the case's (fretting)
-
-
-ARTICLE = "article"
-THRESHOLDS = (
-    # claim 4: where the sliding sphere's σ_VM maximum reaches the surface (s = 0)
-    ThresholdSpec(4, "sliding_friction", "friction.mu", "vm_max_on_surface", 0.2, 0.5,
-                  0.005, (1.0 / 1.5, 1.0, ARTICLE, 2.0)),
-    # claim 13: the fretting regime change in β, under both normal controls, with the
-    # transverse motion held and free
-    *(ThresholdSpec(13, case, "friction.beta", "gross_to_partial_slip", 45.0, 90.0, 1.0,
-                    (1.0 / 1.5, 1.0), every_output=True, cycles=(1, 100))
-      for case in ("fretting_orthotropic", FRETTING_LOAD, FRETTING_FREE, FRETTING_LOAD_FREE)),
-)
 #: the sources each claim reads (claims 4 and 13 also read thresholds); claims 10 and 12
 #: are at β = 0 and 90°, where the transverse motion held or free is the same problem
 NEEDS = {1: ("hertz",), 2: ("pin",), 3: ("pin",), 4: ("pin",), 5: ("sliding",),
