@@ -147,6 +147,7 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
     results = scan(out)
     if results.empty:
         raise UserError(f"no results in {out} (run `contact-vv run` first)")
+    found, table = problems(results), metrics_table(results)
     if update_baseline is not None:
         if results.incomplete or results.damaged:
             raise UserError("refusing to update baselines from incomplete or damaged "
@@ -154,11 +155,9 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
         for path in bl.write(results, update_baseline, out):
             print(f"baseline written: {path}", file=stream)
         return 0
-    found = problems(results)
     if baseline is not None:
         found += bl.drift(results, baseline, bl.DEFAULT_DRIFT if drift_tol is None
                           else drift_tol)
-    table = metrics_table(results)
     with pd.option_context("display.max_rows", None, "display.width", 200,
                            "display.max_colwidth", 40):
         print(table.to_string(index=False) if not table.empty else "(no metrics)", file=stream)
