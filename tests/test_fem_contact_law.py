@@ -257,16 +257,16 @@ def _same_newton_step(op, law, pts, ctrl) -> None:
     from the whole system (fresh LU factors both), equal to round-off."""
     import dataclasses
 
+    from fem_reference.contact.alart_curnier import State, laws, problem
     from fem_reference.contact.kept_factors import KeptFactors
-    from fem_reference.contact.semismooth import _Solver, _State
+    from fem_reference.contact.newton_system import newton_step
 
     steps = []
     for decoupled in (True, False):
-        sv = _Solver(dataclasses.replace(op, decoupled=decoupled), law, pts, ctrl, 0.0, 1e-9,
-                     KeptFactors())
-        s = _State(lam=np.vstack([pts.t_old.T, pts.lam_n[None, :]]), delta=ctrl.delta,
-                   D=np.array(ctrl.D, dtype=float))
-        steps.append(sv.step(s, sv.laws(s)))
+        p = problem(dataclasses.replace(op, decoupled=decoupled), law, pts, ctrl, 0.0, 1e-9)
+        s = State(lam=np.vstack([pts.t_old.T, pts.lam_n[None, :]]), delta=ctrl.delta,
+                  D=np.array(ctrl.D, dtype=float))
+        steps.append(newton_step(p, s, laws(p, s), KeptFactors()))
     (dlam, dx), (dlam0, dx0) = steps
     assert np.abs(dlam - dlam0).max() <= 1e-9 * np.abs(dlam0).max()
     assert np.allclose(dx, dx0, rtol=1e-9, atol=1e-9 * np.abs(dx0).max())
