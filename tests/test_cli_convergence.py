@@ -208,7 +208,7 @@ def test_non_convergent_quantities_are_flagged(studied):
     assert "oscillating" in sec and "not grid-converged" in text
     # the gate names them, with their three values, and still passes on the metrics
     stream = io.StringIO()
-    assert run_gate(out, stream=stream) == 0
+    assert run_gate(out, stream=stream, verbose=True) == 0
     printed = stream.getvalue()
     print(printed)
     assert re.search(r"NOT CONVERGED \(grid\) small step 0 ic vm_max: oscillating; f = "
@@ -235,7 +235,7 @@ def test_a_non_convergent_quantity_is_flagged_not_gated(tmp_path, manufactured, 
                     r"0\.015$", m.loc["vm_max", "note"])
     assert m.loc["p_max", "status"] == "gated"
     stream = io.StringIO()
-    assert run_gate(out, stream=stream) == 0
+    assert run_gate(out, stream=stream, verbose=True) == 0
     assert "NOT GATED small ic-analytic vm_max rel" in stream.getvalue()
     plain = tmp_path / "plain"
     assert run(str(case), "--out", str(plain), *tight) == 0

@@ -237,7 +237,7 @@ def test_a_solver_that_does_not_support_a_case_is_skipped(tmp_path, monkeypatch,
     assert set(pd.read_csv(out / "small" / "summary.csv")["solver"]) == {"ic"}
     assert manifest.read(out / "small")["skipped"]["fem"] == "does not support this case"
     capsys.readouterr()
-    assert main(["gate", "--out", str(out)]) == 1  # ic alone: nothing compared, nothing gated
+    assert main(["gate", "--out", str(out), "--verbose"]) == 1  # ic alone: nothing gated
     text = capsys.readouterr()
     assert "note: small: solver fem not run (does not support this case)" in text.out
     assert "NO METRICS small" in text.err

@@ -66,8 +66,10 @@ def test_a_declared_quantity_is_shown_not_gated(tmp_path, skewed):
     assert p["value"] == pytest.approx(SKEW / (1.0 + 0.0), rel=1e-9)  # compared, written
     assert p["status"] == "not converged" and p["note"].startswith("declared: made up")
     stream = io.StringIO()
-    assert run_gate(out, stream=stream) == 0
+    assert run_gate(out, stream=stream, verbose=True) == 0
     printed = stream.getvalue()
+    (line,) = [x for x in printed.splitlines() if x.startswith("  small: ")]  # by default
+    assert line.startswith("  small: 11/11 passed, ") and "declared 1" in line, line
     assert "NOT GATED small ic-analytic p_max rel (1 row(s), largest 0.3 at step 0): " \
         "not converged; declared: made up" in printed
     assert main(["report", "--out", str(out)]) == 0

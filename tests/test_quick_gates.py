@@ -64,6 +64,7 @@ def test_gate_passes(quick, capsys):
     code = main(["gate", "--out", str(quick)])
     out = capsys.readouterr().out
     assert code == 0, out
+    assert len(out.splitlines()) <= 30, out  # the verdict and a line per case (issue 48)
 
 
 def test_report_has_every_case(quick):

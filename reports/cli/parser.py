@@ -72,8 +72,10 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--out", type=Path, default=Path("results"),
                        help="results directory (default: ./results)")
         if solving:
-            p.add_argument("--solver", help="comma-separated solvers (default: every "
-                           f"available one of {','.join(solvers.names())})")
+            p.add_argument("--solver", help="comma-separated solvers of "
+                           f"{','.join(solvers.names())} (default: the built-in ones that "
+                           "run on the case by default, with their exact relations at "
+                           "--quick; a plugin only when named: contact-vv list)")
             p.add_argument("--quick", action="store_true",
                            help="coarse grids of the case's [quick] table (CI)")
             p.add_argument("--set", action="append", metavar="KEY=VALUE", dest="overrides",
@@ -102,11 +104,21 @@ def build_parser() -> argparse.ArgumentParser:
                      "DIR/<case>/jump_study.csv (change when J is halved, order, GCI)")
     common(run, solving=True)
 
-    report = sub.add_parser("report", help="write DIR/index.html from the results in DIR")
-    common(report, solving=False)
+    def results_dir(p: argparse.ArgumentParser) -> None:
+        p.add_argument("dir", nargs="?", type=Path, metavar="DIR",
+                       help="results directory (the same as --out; default ./results)")
+        common(p, solving=False)
 
-    gate = sub.add_parser("gate", help="print the metrics; exit 1 on any failure")
-    common(gate, solving=False)
+    report = sub.add_parser("report", help="write DIR/index.html from the results in DIR")
+    results_dir(report)
+
+    gate = sub.add_parser("gate", help="print the verdict, the failures and a line per "
+                          "case of the results in DIR; exit 1 on any failure")
+    results_dir(gate)
+    gate.add_argument("--verbose", action="store_true",
+                      help="also every metric row, not-gated row and study note")
+    gate.add_argument("--junit", type=Path, metavar="FILE",
+                      help="also write the verdict as JUnit XML (one test case per row)")
     gate.add_argument("--baseline", type=Path, metavar="DIR",
                       help="also fail on key numbers drifting from the baselines in DIR")
     gate.add_argument("--drift", type=float, default=None, metavar="REL",

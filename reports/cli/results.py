@@ -8,13 +8,23 @@ from pathlib import Path
 from reports.registry.errors import RunFailed, UserError
 
 
+def results_dir(args: argparse.Namespace) -> Path:
+    """The results directory: DIR, or --out (UserError if both name different ones)."""
+    if args.dir is not None and args.out != Path("results") and \
+            Path(args.dir).resolve() != Path(args.out).resolve():
+        raise UserError(f"DIR {args.dir} and --out {args.out} name two results directories; "
+                        "give one")
+    return Path(args.dir) if args.dir is not None else Path(args.out)
+
+
 def cmd_report(args: argparse.Namespace) -> int:
     from reports.render.html import write_report
 
+    out = results_dir(args)
     try:
-        path = write_report(args.out)
+        path = write_report(out)
     except RunFailed:  # written, showing incomplete or damaged cases: say where, exit 1
-        print(f"report: {Path(args.out) / 'index.html'}")
+        print(f"report: {out / 'index.html'}")
         raise
     print(f"report: {path}")
     return 0
@@ -25,5 +35,6 @@ def cmd_gate(args: argparse.Namespace) -> int:
 
     if args.drift is not None and not args.drift > 0:
         raise UserError("--drift must be a positive number")
-    return run_gate(args.out, baseline=args.baseline, update_baseline=args.update_baseline,
-                    drift_tol=args.drift)
+    return run_gate(results_dir(args), baseline=args.baseline,
+                    update_baseline=args.update_baseline, drift_tol=args.drift,
+                    verbose=args.verbose, junit=args.junit)

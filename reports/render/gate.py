@@ -1,11 +1,17 @@
-"""``contact-vv gate``: print the metrics table; fail on any failed metric (``passed``
-recomputed from value and tolerance; a recorded ``passed`` that disagrees is a problem
-too), case with no gated metric, non-converged run, incomplete or damaged case, naming
-each.  Quantities whose grid study (``run --convergence``,
-:mod:`reports.studies.gridstudy`) is not converged are printed as
-``NOT CONVERGED (grid) …`` notes with their three values; metric rows whose ``status`` is
-"not converged" (declared in the case file or from that study, :mod:`reports.registry.tolerances`)
-are printed as ``NOT GATED …`` notes with their value and reason: neither fails the gate."""
+"""``contact-vv gate``: fail on any failed metric (``passed`` recomputed from value and
+tolerance; a recorded ``passed`` that disagrees is a problem too), case with no gated
+metric, non-converged run, incomplete or damaged case, naming each.
+
+It prints, by default, the verdict and the counts on its first line, then every problem
+(a failed metric with its case, point, step, pair, quantity, metric, value, tolerance,
+the tolerance's source and where the report shows it), then one line per case (its
+counts, the rows shown but not gated by reason, the solvers not run), and the notes
+that may change what the numbers mean (a case file or solver source changed since the
+run).  ``--verbose`` adds the whole metrics table, every ``NOT GATED …`` row with its
+value and reason, the grid and jump studies' ``NOT CONVERGED …`` notes with their three
+values and every solver not run with why.  Neither a not-gated row nor a study note
+fails the gate.  ``--junit FILE`` also writes the verdict as JUnit XML
+(:mod:`reports.render.junit`)."""
 
 from __future__ import annotations
 
@@ -15,6 +21,8 @@ from typing import TextIO
 
 import pandas as pd
 
+from reports.compare.maxima import EDGE_NOTE, SURFACE_NOTE
+from reports.compare.metrics import KINK_NOTE
 from reports.registry import solvers
 from reports.registry.errors import RunFailed, UserError
 from reports.registry.tolerances import UNCERTAINTY
@@ -47,11 +55,13 @@ def _num(x: float) -> str:
     return f"{x:.4g}"
 
 
-def metric_problems(case: CaseResults) -> list[str]:
+def metric_problems(case: CaseResults, report: Path | None = None) -> list[str]:
     """One line per failed metric of a case (``passed`` as recomputed from value and
-    tolerance, :func:`reports.registry.tolerances.passes`) and per metric whose recorded ``passed``
-    disagrees with that."""
+    tolerance, :func:`reports.registry.tolerances.passes`) and per metric whose recorded
+    ``passed`` disagrees with that; a failure names the case's section of ``report``
+    (the HTML report) where it is given."""
     lines = []
+    shown = f"; shown in {report}#case-{case.name}" if report is not None else ""
     on = gated(case.metrics).to_numpy()
     for k, r in enumerate(case.metrics.itertuples(index=False)):
         what = f"{_where(case.name, r.param, r.step)} {r.pair} {r.quantity} {r.metric}"
@@ -66,9 +76,9 @@ def metric_problems(case: CaseResults) -> list[str]:
                 why = f"= {_num(value)} > tolerance {_num(tol)}"
             if r.tolerance_kind == UNCERTAINTY:
                 why += (f" (the combined uncertainty of the grid studies; budget "
-                        f"{_num(float(r.budget))}, tolerance key {key})")
+                        f"{_num(float(r.budget))}, tolerance key {key}{shown})")
             elif isinstance(key, str) and key:
-                why += f" (tolerance key {key})"
+                why += f" (tolerance key {key}{shown})"
             lines.append(f"FAIL {what} {why}")
         if bool(r.passed_recorded) != bool(r.passed):
             lines.append(f"INCONSISTENT {what}: {case.path / METRICS} records passed = "
@@ -106,12 +116,12 @@ def _second_hint(case: CaseResults) -> str:
     return hint + (f"; {said}" if said else "")
 
 
-def problems(results: Scan) -> list[str]:
+def problems(results: Scan, report: Path | None = None) -> list[str]:
     """One line per failed or inconsistent metric, case without a gated metric,
     non-converged run, incomplete and damaged case."""
     lines = []
     for case in results.complete:
-        lines += metric_problems(case)
+        lines += metric_problems(case, report)
         if not gated(case.metrics).any():
             lines.append(f"NO METRICS {case.name}: {case.path / METRICS} holds no gated "
                          f"comparison, so nothing in it is verified ({_second_hint(case)})")
@@ -130,24 +140,94 @@ def stale_case_file(mf: dict) -> bool:
     return path.is_file() and sha256_file(path) != mf.get("case_sha256")
 
 
+#: why a row is shown and not gated, by the start of its note (the notes' own texts:
+#: reports.registry.tolerances, reports.registry.resolution, reports.compare.point,
+#: reports.studies.gridstudy), as the gate's per-case line names them
+REASONS = (("declared: ", "declared"), ("not resolved", "below a resolution floor"),
+           (KINK_NOTE, "stick band"), (EDGE_NOTE, "edge band"),
+           (SURFACE_NOTE, "maximum on the surface"), ("grid study", "grid study"),
+           ("jump study", "jump study"))
+
+
+def reason_of(note: str) -> str:
+    """The short reason of a not-gated row's note (:data:`REASONS`; 'other')."""
+    note = str(note)
+    return next((label for start, label in REASONS if note.startswith(start[:40])), "other")
+
+
+def case_line(case: CaseResults) -> str:
+    """One line of a case: its gated rows passed, those shown but not gated by reason,
+    and the solvers not run."""
+    m = case.metrics
+    on = gated(m)
+    passed = int((m["passed"].astype(bool) & on).sum()) if len(m) else 0
+    text = f"  {case.name}: {passed}/{int(on.sum())} passed"
+    if len(m) and (~on).any():
+        counts = pd.Series([reason_of(n) for n in m.loc[~on, "note"]]).value_counts()
+        text += f", {int((~on).sum())} not gated (" + ", ".join(
+            f"{k} {v}" for k, v in counts.items()) + ")"
+    skipped = list(case.manifest.get("skipped", {}))
+    if skipped:
+        text += f"; not run: {', '.join(skipped)}"
+    return text
+
+
+def _verbose_notes(case: CaseResults) -> list[str]:
+    return ([f"note: {case.name}: solver {s} not run ({why})"
+             for s, why in case.manifest.get("skipped", {}).items()]
+            + note_lines(case.name, case.convergence)
+            + note_lines_jump(case.name, case.jump_study) + ungated_lines(case))
+
+
+def _warnings(case: CaseResults) -> list[str]:
+    """The notes that change what a case's numbers mean: printed always."""
+    out = []
+    if case.manifest.get("sources_changed_during_run"):
+        out.append(f"note: {case.name}: solver sources changed during the run; its numbers "
+                   "may mix two versions (re-run)")
+    if stale_case_file(case.manifest):
+        out.append(f"note: {case.name}: the case file {case.manifest.get('case_file')} "
+                   "changed since the run (re-run to check the current version)")
+    return out
+
+
+def headline(results: Scan, table: pd.DataFrame, found: list[str]) -> str:
+    """The verdict and its counts (the gate's first line)."""
+    on = gated(table)
+    n_ok = int((table["passed"].astype(bool) & on).sum())
+    n_off = int((~on).sum())
+    n_u = int((on & (table["tolerance_kind"] == UNCERTAINTY)).sum())
+    return (f"gate: {len(results.complete)} case(s), {n_ok}/{len(table) - n_off} metric(s) "
+            "passed" + (f" ({n_u} against the combined uncertainty of grid studies)"
+                        if n_u else "")
+            + (f", {n_off} not gated (not converged)" if n_off else "")
+            + f", {len(found)} problem(s): " + ("FAILED" if found else "PASSED"))
+
+
 def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None = None,
-             update_baseline: Path | None = None, drift_tol: float | None = None) -> int:
-    """Print the table and the problems; 0 if none, else :class:`RunFailed` carrying one
-    line per problem (after printing them: the CLI repeats them as errors, exit 1).
+             update_baseline: Path | None = None, drift_tol: float | None = None,
+             verbose: bool = False, junit: Path | None = None) -> int:
+    """Print the verdict, the problems and a line per case (module doc); 0 if no problem,
+    else :class:`RunFailed` carrying one line per problem (after printing them: the CLI
+    repeats them as errors, exit 1).
 
     ``baseline``: also fail on key numbers that drifted from the baselines in that folder
     (a baseline folder that cannot be read is a :class:`UserError`, before any output);
-    ``update_baseline``: write the baselines of the current results there instead.
+    ``update_baseline``: write the baselines of the current results there instead;
+    ``verbose``: every metric row and note; ``junit``: also write JUnit XML there.
     """
     import sys
 
     from reports.render import baseline as bl
+    from reports.render.junit import write_junit
 
     stream = stream or sys.stdout
     results = scan(out)
     if results.empty:
         raise UserError(f"no results in {out} (run `contact-vv run` first)")
-    found, table = problems(results), metrics_table(results)
+    index = Path(out) / "index.html"
+    found = problems(results, index if index.exists() else None)
+    table = metrics_table(results)
     if update_baseline is not None:
         if results.incomplete or results.damaged:
             raise UserError("refusing to update baselines from incomplete or damaged "
@@ -158,32 +238,19 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
     if baseline is not None:
         found += bl.drift(results, baseline, bl.DEFAULT_DRIFT if drift_tol is None
                           else drift_tol)
-    with pd.option_context("display.max_rows", None, "display.width", 200,
-                           "display.max_colwidth", 40):
-        print(table.to_string(index=False) if not table.empty else "(no metrics)", file=stream)
-    for case in results.complete:
-        for solver, reason in case.manifest.get("skipped", {}).items():
-            print(f"note: {case.name}: solver {solver} not run ({reason})", file=stream)
-        if case.manifest.get("sources_changed_during_run"):
-            print(f"note: {case.name}: solver sources changed during the run; its numbers "
-                  "may mix two versions (re-run)", file=stream)
-        if stale_case_file(case.manifest):
-            print(f"note: {case.name}: the case file {case.manifest.get('case_file')} changed "
-                  "since the run (re-run to check the current version)", file=stream)
-        for line in (note_lines(case.name, case.convergence)
-                     + note_lines_jump(case.name, case.jump_study) + ungated_lines(case)):
-            print(line, file=stream)  # information, not failures
-    on = gated(table)
-    n_ok = int((table["passed"].astype(bool) & on).sum())
-    n_off = int((~on).sum())
-    n_u = int((on & (table["tolerance_kind"] == UNCERTAINTY)).sum())
-    print(f"gate: {len(results.complete)} case(s), {n_ok}/{len(table) - n_off} metric(s) "
-          "passed" + (f" ({n_u} against the combined uncertainty of grid studies)"
-                      if n_u else "")
-          + (f", {n_off} not gated (not converged)" if n_off else "")
-          + f", {len(found)} problem(s)", file=stream)
-    for line in found:
-        print(line, file=stream)
+    lines = [headline(results, table, found), *found]
+    lines += [case_line(case) for case in results.complete]
+    lines += [w for case in results.complete for w in _warnings(case)]
+    if verbose:
+        with pd.option_context("display.max_rows", None, "display.width", 200,
+                               "display.max_colwidth", 40):
+            lines.append(table.to_string(index=False) if not table.empty else "(no metrics)")
+        lines += [n for case in results.complete for n in _verbose_notes(case)]
+    else:
+        lines.append("(--verbose: every metric row, not-gated row and study note)")
+    print("\n".join(lines), file=stream)
+    if junit is not None:
+        print(f"junit: {write_junit(junit, results, found)}", file=stream)
     if found:
         raise RunFailed(found)
     return 0
