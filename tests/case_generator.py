@@ -11,8 +11,11 @@ user's).  The ranges (also in ``benchmarks/README.md``, "False alarms"):
   isotropic or orthotropic friction, its wear isotropic or orthotropic (i2/i1 0.2–5, the
   axes at any β, sliding in any direction), and the first fretting cycle
   (Mindlin–Deresiewicz) under a held approach, in any direction, its wear orthotropic
-  along a principal axis (the closed form's domain), 1–3 cycles with cycle 1 an output,
-  the transverse motion held or free;
+  along a principal axis (the closed form's domain; i2/i1 1, or 1.25–5 either way), 1–3
+  cycles with cycle 1 an output,
+  or a cycle jump of 2 over 4 cycles with orthotropic wear (where the closed form declines
+  and the half-space solver's exact relations compare), the transverse motion held or
+  free;
 - R 5–200 mm, P 1–300 N (log-uniform), E 70–400 GPa, ν −0.3–0.45, μ 0.05–0.8 (sliding)
   or 0.1–0.8, Q/(μP) 0.1–0.9, fretting amplitude 0.2–3 δ*, worn contact radius 1.5–3 a0;
 - the grid: 3.5–10 cells per contact radius (the worn radius for a pin), its half-width
@@ -28,10 +31,7 @@ Not drawn, and why: ``name`` (the file stem; a directory name, no physics), ``[f
 (it acts on the FEM alone, which the generated cases do not run: hundreds of FEM runs
 are beyond the fast and the full tier), ``[tolerances]`` and ``[not_converged]`` (the
 gate's own settings: the false-alarm rate is that of the defaults), ``[sweep]`` and
-``[quick]`` (each of their points is a case of the kinds above), ``fretting.jump`` (the
-closed form is the first cycle simulated, ``jump = 1``; a jump is verified by the jump
-study, ``tests/test_jump_study.py``), ``sliding_wear`` other than its path (``step``,
-``distance``, ``output_s`` are drawn by the pin's wear).
+``[quick]`` (each of their points is a case of the kinds above).
 """
 
 from __future__ import annotations
@@ -133,15 +133,22 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
         # orthotropic wear along a principal axis (the closed form's domain): β = φ + k 90°
         slide = draw(st.floats(-180.0, 180.0))  # any direction
         beta = slide + 90.0 * draw(st.integers(-2, 2))
-        ratio = draw(st.sampled_from([1.0, draw(_log_uniform(0.2, 5.0))]))  # i2 / i1
+        jumped = draw(st.integers(0, 3)) == 0  # a cycle jump: the closed form declines,
+        # and the half-space solver's exact relations of orthotropic wear compare it
+        orthotropic = draw(_log_uniform(1.25, 5.0)) ** draw(st.sampled_from([1, -1]))
+        ratio = orthotropic if jumped else draw(st.sampled_from([1.0, orthotropic]))  # i2/i1
         body_a = body_b = f"i1 = {i_w!r}\ni2 = {ratio * i_w!r}\n"
         friction += f"beta = {beta!r}\n"
         load += f"slide_angle = {slide!r}\n"
         cycles = draw(st.integers(1, 3))  # the closed form is cycle 1's: an output
         outputs = sorted({1, draw(st.integers(1, cycles))})
+        jump = ""
+        if jumped:
+            cycles, outputs = 4, sorted({4, draw(st.sampled_from([2, 4]))})
+            jump = "jump = 2.0\n"
         extra = (f"[fretting]\namplitude = {draw(st.floats(0.2, 3.0)) * delta_star!r}\n"
                  f"steps_per_cycle = {draw(st.sampled_from([8, 12, 20]))}\n"
-                 f"cycles = {cycles}\noutput_cycles = {outputs}\n"
+                 f"cycles = {cycles}\n{jump}output_cycles = {outputs}\n"
                  f"transverse = \"{draw(st.sampled_from(['held', 'free']))}\"\n"
                  f"[solver]\ntol = {draw(_log_uniform(1e-10, 1e-8))!r}\n")
     cells = draw(st.floats(3.5, 10.0))  # cells per contact radius
