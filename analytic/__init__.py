@@ -19,7 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from cases.model import Case
+from cases.model import Case, one_case
 from cases.result import RunResult, StepResult
 
 
@@ -29,7 +29,7 @@ def solve(case: Case, *, progress: bool = False,
     so that a module of this package loads without the others."""
     from .solver import solve as _solve
 
-    return _solve(case, progress=progress, on_output=on_output)
+    return _solve(one_case(case, "analytic"), progress=progress, on_output=on_output)
 
 
 def supports(case: Case) -> str | None:

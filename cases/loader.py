@@ -142,3 +142,19 @@ def load_case(name_or_path: str | Path, *, quick: bool = False,
         cases.append(build(point, name=name, source=str(path),
                             param=f"{label}={value_label(value)}"))
     return cases
+
+
+def load_point(name_or_path: str | Path, point: int | str = 0, *, quick: bool = False,
+               overrides: dict[str, Any] | None = None) -> Case:
+    """One point of a case file (:func:`load_case` gives them all): ``point`` its index,
+    or its label (``"mu=0.35"``: the swept key's label and value, as results name it).
+    A case without a sweep has the one point 0."""
+    points = load_case(name_or_path, quick=quick, overrides=overrides)
+    labels = [c.param for c in points]
+    if isinstance(point, str) and point in labels:
+        return points[labels.index(point)]
+    if isinstance(point, int) and -len(points) <= point < len(points):
+        return points[point]
+    raise CaseError(f"{name_or_path}: no point {point!r}; its points are "
+                    + ", ".join(f"{k} ({lab or 'no sweep'})" for k, lab in enumerate(labels)))
+

@@ -358,3 +358,15 @@ def check_positive(value: float, key: str, *, allow_zero: bool = False) -> None:
     if not (isinstance(value, int | float) and math.isfinite(value) and ok):
         bound = ">= 0" if allow_zero else "> 0"
         raise CaseError(f"{key} = {value!r}: must be a finite number {bound}")
+
+
+def one_case(case: object, solver: str) -> Case:
+    """``case`` if it is one :class:`Case`, else a TypeError for the solver ``solver``
+    that says how to get one (:func:`cases.load_case` gives a list, a Case per sweep
+    point)."""
+    if isinstance(case, Case):
+        return case
+    hint = (" (load_case gives a list, one Case per sweep point: take one, or use "
+            "cases.load_point(name, point))" if isinstance(case, list | tuple) else "")
+    raise TypeError(f"{solver}.solve takes one Case, not a {type(case).__name__}{hint}")
+

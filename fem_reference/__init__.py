@@ -29,7 +29,7 @@ Public API:
 
 from collections.abc import Callable
 
-from cases.model import Case
+from cases.model import Case, one_case
 from cases.result import Cost, RunResult, StepResult
 
 from .contact.augmented import ContactNotConverged
@@ -44,7 +44,8 @@ def solve(case: Case, *, progress: bool = False,
           log=None) -> RunResult:
     """Run the FEM reference on ``case`` (:func:`fem_reference.solver.solve`);
     ``on_output`` receives each output step as soon as it is computed."""
-    return _solve(case, progress, vtu=vtu, log=log, on_output=on_output)
+    return _solve(one_case(case, "fem_reference"), progress, vtu=vtu, log=log,
+                  on_output=on_output)
 
 
 def supports(case: Case) -> str | None:

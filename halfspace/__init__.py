@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from cases.model import Case
+from cases.model import Case, one_case
 from cases.result import Cost, RunResult, StepResult
 
 KINDS = ("static", "sliding_wear", "fretting")
@@ -23,7 +23,7 @@ def solve(case: Case, *, progress: bool = False,
     receives each output step as soon as it is computed."""
     from .solver import solve as _solve
 
-    return _solve(case, progress=progress, on_output=on_output)
+    return _solve(one_case(case, "halfspace"), progress=progress, on_output=on_output)
 
 
 def estimate(case: Case) -> Cost:

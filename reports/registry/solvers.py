@@ -21,9 +21,10 @@ unavailable without breaking the others.  Adding a solver is one record here and
 package, or an installed plugin (:mod:`reports.registry.plugins`).
 
 Error budgets (at the resolutions of the bundled cases, quick grids included), tightened
-to the errors measured on the quick chain (main f6ca390, 697 gated default-tolerance
-rows; the worst error of each solver against the closed forms, and of the pair ic-fem
-where no closed form exists) and kept above them by a margin for cases not bundled:
+to the errors measured on the quick chain at main f6ca390 (its default-tolerance
+rows, benchmarks/README.md: the worst error of each solver against the closed forms, and
+of the pair ic-fem where no closed form exists) and kept above them by a margin for
+cases not bundled:
 
 - grid solvers (``ic``: piecewise-constant tractions on cells; the quick grids resolve a0
   with ≈ 4 cells): a peak value is a cell average, ≈ (h/a)²/12 below the point value
