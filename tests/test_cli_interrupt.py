@@ -122,9 +122,24 @@ def test_a_live_run_is_not_disturbed(tmp_path, monkeypatch, capsys):
     finally:
         holder.kill()
         holder.wait()
-    # the lock dies with its holder: the next run takes over and completes
+    # the lock dies with its holder: the next run takes over, completes and removes the
+    # lock file it held (the holder wrote nothing else into it)
     assert main(["run", "--no-progress", str(write_case(tmp_path)), "--out", str(out)]) == 0
     assert not staging.exists()
+    assert not layout.lock_file(out, "small").exists()
+
+
+def test_a_lock_file_a_run_did_not_write_is_kept(tmp_path, monkeypatch):
+    """A file at the lock's name holding anything but a pid is not a run's: kept."""
+    import test_cli_fakes as fakes
+
+    fakes.use(monkeypatch, ic="solve_ic")
+    out = tmp_path / "res"
+    out.mkdir()
+    lock = layout.lock_file(out, "small")
+    lock.write_text("my notes")
+    assert main(["run", "--no-progress", str(write_case(tmp_path)), "--out", str(out)]) == 0
+    assert lock.exists()
 
 
 def test_finished_output_steps_are_kept_and_the_rerun_says_it_restarts(tmp_path, monkeypatch,

@@ -3,7 +3,6 @@ a lock, and the text table ``contact-vv threshold`` prints (:mod:`reports.run.th
 
 from __future__ import annotations
 
-import fcntl
 import math
 import sys
 from collections.abc import Iterator
@@ -17,7 +16,7 @@ from reports.registry.errors import UserError
 from reports.run.threshold import COLUMNS, Request
 from reports.store.layout import THRESHOLDS
 from reports.store.readers import MERGE_KEYS, DamagedResult, read_result, read_thresholds
-from reports.store.staging import open_lock
+from reports.store.staging import held
 from reports.store.write import write_csv
 
 
@@ -67,9 +66,9 @@ def stderr_log(message: str) -> None:
 
 @contextmanager
 def _locked(path: Path) -> Iterator[None]:
-    """Hold an exclusive OS lock on ``path`` (waiting for another threshold run)."""
-    with open_lock(path) as fh:
-        fcntl.flock(fh, fcntl.LOCK_EX)
+    """Hold an exclusive OS lock on ``path`` (waiting for another threshold run); the
+    lock file is removed at the end (:func:`reports.store.staging.held`)."""
+    with held(path):
         yield
 
 

@@ -6,19 +6,22 @@ the staging directory is claimed until after it is renamed onto ``DIR/<case>``, 
 runs of one case never share or remove each other's directories: the second one is
 refused with the first one's pid.  Holding the lock, a staging directory found on disk
 can only be an interrupted run's: it is discarded with a note (runs do not resume), but
-only if it holds nothing a run does not write.
+only if it holds nothing a run does not write.  The lock file is removed when the run
+ends (:func:`held`: while still held, so that no second holder can appear).
 """
 
 from __future__ import annotations
 
 import fcntl
 import os
+import re
 import shutil
 import stat
 import sys
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import TextIO
 
 from reports.registry.errors import UserError
 from reports.store import layout
@@ -28,25 +31,65 @@ _STAGING_EXTRA = frozenset({layout.FAILED, ".pid"})
 
 
 @contextmanager
-def case_lock(out: Path, name: str) -> Iterator[Path]:
-    """Hold the lock of case ``name`` in ``out`` (UserError if another run holds it)."""
-    path = layout.lock_file(out, name)
-    fh = open_lock(path)
-    try:
+def held(path: Path, *, wait: bool = True,
+         busy: Callable[[str], Exception] | None = None) -> Iterator[TextIO]:
+    """Hold an exclusive OS lock on the file ``path`` (created if absent, :func:`open_lock`)
+    and remove the file at the end, while still holding it, if it holds nothing but what
+    a run writes (its pid, or nothing).  A process that waited on the removed file finds,
+    once it holds it, that the path no longer names it and locks the file that replaced
+    it, so two holders never coexist.  ``wait=False``: ``busy(holder's pid)`` is raised
+    if another process holds it."""
+    while True:
+        fh = open_lock(path)
         try:
-            fcntl.flock(fh, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            fcntl.flock(fh, fcntl.LOCK_EX | (0 if wait else fcntl.LOCK_NB))
         except BlockingIOError:
             fh.seek(0)
             holder = fh.read().strip() or "?"
-            raise UserError(f"another contact-vv run (pid {holder}) is writing case {name} in "
-                            f"{out}; wait for it to end or choose another --out") from None
-        fh.seek(0)
-        fh.truncate()
-        fh.write(str(os.getpid()))
-        fh.flush()
-        yield path
+            fh.close()
+            raise (busy or UserError)(holder) from None
+        if _names(path, fh):
+            break
+        fh.close()  # removed by its last holder: lock the file that replaced it
+    try:
+        yield fh
     finally:
-        fh.close()  # closing releases the lock
+        try:
+            fh.seek(0)
+            if _names(path, fh) and re.fullmatch(r"\d*", fh.read().strip()):
+                path.unlink()
+        finally:
+            fh.close()  # closing releases the lock
+
+
+def _names(path: Path, fh: TextIO) -> bool:
+    """Whether ``path`` still names the open file ``fh``."""
+    try:
+        st = os.stat(path, follow_symlinks=False)
+    except FileNotFoundError:
+        return False
+    mine = os.fstat(fh.fileno())
+    return (st.st_ino, st.st_dev) == (mine.st_ino, mine.st_dev)
+
+
+@contextmanager
+def case_lock(out: Path, name: str) -> Iterator[Path]:
+    """Hold the lock of case ``name`` in ``out`` (UserError if another run holds it);
+    the lock file is removed when the run ends (:func:`held`)."""
+    path = layout.lock_file(out, name)
+
+    def busy(holder: str) -> UserError:
+        return UserError(f"another contact-vv run (pid {holder}) is writing case {name} in "
+                         f"{out}; wait for it to end or choose another --out")
+
+    with held(path, wait=False, busy=busy) as fh:
+        fh.seek(0)
+        if re.fullmatch(r"\d*", fh.read().strip()):  # a run's (a pid) or new: ours now
+            fh.seek(0)
+            fh.truncate()
+            fh.write(str(os.getpid()))
+            fh.flush()
+        yield path
 
 
 def open_lock(path: Path):
