@@ -7,6 +7,7 @@ point.  Every error is a :class:`~cases.model.CaseError` whose message names the
 from __future__ import annotations
 
 import copy
+import difflib
 from pathlib import Path
 from typing import Any
 
@@ -46,8 +47,11 @@ def case_path(name_or_path: str | Path) -> Path:
         return p
     bundled = CASES_DIR / f"{name_or_path}.toml"
     if not bundled.is_file():
-        names = ", ".join(sorted(q.stem for q in CASES_DIR.glob("*.toml")))
-        raise CaseError(f"unknown case {name_or_path!r}; bundled cases: {names}")
+        stems = sorted(q.stem for q in CASES_DIR.glob("*.toml"))
+        near = difflib.get_close_matches(str(name_or_path), stems, n=1)
+        guess = f" (did you mean {near[0]!r}?)" if near else ""
+        raise CaseError(f"unknown case {name_or_path!r}{guess}; bundled cases: "
+                        + ", ".join(stems))
     return bundled
 
 

@@ -54,6 +54,7 @@ def test_grid_edge_detected_by_the_solver_is_a_user_error(tmp_path, monkeypatch,
 
 @pytest.mark.parametrize(("argv", "needle"), [
     (["run", "no_such_case"], "unknown case 'no_such_case'; bundled cases:"),
+    (["run", "hertzz"], "unknown case 'hertzz' (did you mean 'hertz'?); bundled cases:"),
     (["run"], "run needs at least one CASE or --all"),
     (["run", "hertz", "--solver", "icc"], "unknown solver(s) icc"),
     (["run", "hertz", "--set", "grid.nx"], "--set 'grid.nx': expected KEY=VALUE"),
@@ -101,4 +102,14 @@ def test_list_shows_cases_and_solvers(capsys):
     assert main(["list"]) == 0
     out = capsys.readouterr().out
     assert "hertz" in out and "static" in out
+    # the sweep points at both sizes: sliding_friction's six, and two with --quick
+    assert "sliding_friction" in out and "6|2 pt" in out.split("sliding_friction", 1)[1][:40]
     assert "solver ic" in out and "solver analytic" in out
+
+
+def test_a_results_directory_that_is_a_file_is_named(tmp_path, capsys):
+    path = tmp_path / "afile"
+    path.write_text("mine")
+    assert main(["run", "hertz", "--quick", "--out", str(path)]) == 2
+    assert f"results directory {path} is a file, not a directory" in capsys.readouterr().err
+    assert path.read_text() == "mine"

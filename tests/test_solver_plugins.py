@@ -69,7 +69,8 @@ def _metrics(out: Path) -> pd.DataFrame:
 def test_plugin_is_run_compared_reported_and_gated(tmp_path, install, capsys):
     assert install() == []
     assert main(["list"]) == 0
-    assert "solver hertz_example available (plugin)" in capsys.readouterr().out
+    assert "solver hertz_example available (plugin: runs only when named)" in \
+        capsys.readouterr().out
     out = tmp_path / "res"
     assert main([*RUN, "--solver", "hertz_example,ic,analytic", "--out", str(out)]) == 0
     m = _metrics(out)
@@ -139,7 +140,7 @@ def test_a_plugin_whose_supports_raises_is_skipped_there(tmp_path, install):
 def test_the_console_script_loads_plugins_at_start(tmp_path):
     """A fresh process: the entry points are read when the registry is imported."""
     env = dict(os.environ)
-    for entry, expect in ((ENTRY, "solver hertz_example available (plugin)"),
+    for entry, expect in ((ENTRY, "solver hertz_example available (plugin: runs only when named)"),
                           ("hertz_example = gone:record", "contact-vv: warning: solver "
                            "plugin 'hertz_example' (gone:record of contact-vv-hertz-example "
                            "0.1.0) left out: cannot load it")):

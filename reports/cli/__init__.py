@@ -25,6 +25,14 @@ COMMANDS = {"list": cmd_list, "run": cmd_run, "report": cmd_report, "gate": cmd_
             "sweep": cmd_sweep, "threshold": cmd_threshold, "article": cmd_article}
 
 
+def _check_out(args) -> None:
+    """A results directory that names an existing file is refused, naming it."""
+    for out in (getattr(args, "dir", None), getattr(args, "out", None)):
+        if out is not None and out.exists() and not out.is_dir():
+            raise UserError(f"results directory {out} is a file, not a directory; choose "
+                            "another --out")
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``contact-vv`` console script; returns the exit status.
 
@@ -38,6 +46,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     for line in solvers.PLUGIN_ERRORS:  # a plugin left out: one line, the others run on
         print(f"{PROG}: warning: {line}", file=sys.stderr)
     try:
+        _check_out(args)
         return COMMANDS[args.command](args)
     except (UserError, CaseError) as exc:
         return fail(str(exc))

@@ -21,17 +21,17 @@ def cmd_list(args: argparse.Namespace) -> int:
             print(f"{name:26s} (case file missing)")
             continue
         try:
-            points = load_case(name)
+            points, quick = load_case(name), load_case(name, quick=True)
         except CaseError as exc:
             print(f"{name:26s} INVALID: {exc}")
             continue
         first = points[0]
-        sweep = f"{len(points)} points" if len(points) > 1 else "1 point"
-        print(f"{name:26s} {first.kind:13s} {sweep:10s} {first.description}")
-    print()
+        sweep = f"{len(points)}|{len(quick)} pt"
+        print(f"{name:26s} {first.kind:13s} {sweep:9s} {first.description}")
+    print("(pt: sweep points at article size | with --quick)\n")
     for s in solvers.names():
         ok, reason = solvers.available(s)
-        kind = " (plugin)" if s in solvers.PLUGINS else ""
+        kind = " (plugin: runs only when named)" if s in solvers.PLUGINS else ""
         print(f"solver {s:9s} {'available' if ok else 'unavailable: ' + reason}{kind}")
     return 0
 
