@@ -185,6 +185,17 @@ def execute(work: Work, out: Path, *, progress: bool | None,
     from reports.run.threshold_table import write_rows
 
     codes = [report([run_plan(p, out, progress=progress)]) for p in work.plans]
-    for request in work.requests:
-        write_rows(out, th.run(request, log=log))
+    found: dict[tuple[str, str], list[str]] = {}
+    for k, request in enumerate(work.requests):
+        rows = th.run(request)
+        write_rows(out, rows)
+        group = (Path(request.case).stem, request.event)
+        found.setdefault(group, []).extend(
+            f"{r['solver']} {r['grid']}{' ' + r['at'] if r['at'] else ''} "
+            + (f"{r['threshold']:.4g}" if r["status"].startswith(("bisected", "exact"))
+               else r["status"].split(":")[0]) for r in rows)
+        last = k + 1 == len(work.requests) or \
+            (Path(work.requests[k + 1].case).stem, work.requests[k + 1].event) != group
+        if last and log is not None:  # one line per threshold study of the claims
+            log(f"{group[0]} {group[1]} in {request.param}: " + ", ".join(found[group]))
     return max(codes, default=0)

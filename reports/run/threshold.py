@@ -143,7 +143,6 @@ class Unit:
     evaluations: int = 0
     wall_s: float = 0.0
     at_label: str = ""
-    log: Callable[[str], None] | None = None
 
     def case(self, value: float) -> Case:
         """The case at ``param`` = ``value`` on this unit's grid (validated)."""
@@ -176,10 +175,6 @@ class Unit:
         verdict = event(r.event).test(step, r.options)
         dt = time.perf_counter() - t0
         self.evaluations, self.wall_s = self.evaluations + 1, self.wall_s + dt
-        if self.log is not None:
-            ev = event(r.event)
-            self.log(f"{self.solver} {grid_label(self.solver, case)}: {r.param} = {value:.6g}"
-                     f" -> {ev.true_means if verdict else ev.false_means} ({dt:.1f} s)")
         return verdict
 
     def row(self, **values: Any) -> dict[str, Any]:
@@ -235,7 +230,7 @@ def _exact_row(unit: Unit) -> dict[str, Any] | None:
     return row
 
 
-def make_units(request: Request, log: Callable[[str], None] | None = None) -> list[Unit]:
+def make_units(request: Request) -> list[Unit]:
     """Every (point, solver, grid) of ``request``; UserError if the event does not apply."""
     for value in (request.hi, request.lo):
         try:
@@ -252,7 +247,7 @@ def make_units(request: Request, log: Callable[[str], None] | None = None) -> li
     labels = [c.param if key and key != request.param else "" for c in points]
     order = [s for s in solvers.names()  # a metamorphic relation has no threshold of its own
              if s in request.solvers and not solvers.record(s).base]
-    return [Unit(request, i, labels[i], s, f, log=log)
+    return [Unit(request, i, labels[i], s, f)
             for i in range(len(points)) for s in order for f in request.grids]
 
 
@@ -291,7 +286,7 @@ def run(request: Request, log: Callable[[str], None] | None = None) -> list[dict
     whose solver fails has a ``failed`` row."""
     ends: list[tuple[Unit, tuple[bool, bool] | dict[str, Any]]] = []
     skip: set[tuple[int, str]] = set()  # a solver that cannot say: one row, not one a grid
-    for u in make_units(request, log):
+    for u in make_units(request):
         if (u.point, u.solver) not in skip:
             ends.append((u, _ends(u)))
             if isinstance(ends[-1][1], dict) and not ends[-1][1]["status"].startswith("fail"):
@@ -312,7 +307,21 @@ def run(request: Request, log: Callable[[str], None] | None = None) -> list[dict
             if exact is not None:
                 rows.append(exact)
         rows.append(e if isinstance(e, dict) else _bisect_unit(u, e))
+        if log is not None:
+            log(row_line(rows[-1]))
     return add_grid_shift(rows)
+
+
+def row_line(row: dict[str, Any]) -> str:
+    """One line of a finished bisection (or why it has none): its progress line."""
+    where = f" [{row['point']}]" if row["point"] else ""
+    at = f" at {row['at']}" if row["at"] else ""
+    if isinstance(row["threshold"], float) and math.isfinite(row["threshold"]):
+        what = f"{row['param']} = {row['threshold']:.6g} ± {row['uncertainty']:.2g}"
+    else:
+        what = str(row["status"])
+    return (f"{row['solver']} {row['grid']}{where}{at}: {what} ({row['evaluations']} "
+            f"evaluations, {row['wall_s']:.1f} s)")
 
 
 def add_grid_shift(rows: list[dict[str, Any]]) -> list[dict[str, Any]]:
