@@ -92,9 +92,40 @@ def cmd_run(args: argparse.Namespace) -> int:
         for w in p.warnings:
             print(f"{PROG}: warning: {w}", file=sys.stderr)
     progress = False if args.no_progress else None
+    estimated = _announce(plans)
+    t0 = time.perf_counter()
     codes = [report_runs([execute(p, args.out, progress=progress)], args.out)
              for p in plans]  # each case reported as soon as it is done
+    print(f"run: {len(plans)} case(s) in {_duration(time.perf_counter() - t0)} (estimated "
+          f"{_duration(estimated)})")
     return 2 if 2 in codes else max(codes)
+
+
+#: a unit whose estimate is longer is announced before the run starts
+LONG_UNIT_S = 60.0
+
+
+def _duration(seconds: float) -> str:
+    return f"{seconds:.0f} s" if seconds < 120 else f"{seconds / 60:.1f} min"
+
+
+def _announce(plans) -> float:
+    """Print the planner's estimate of every long unit (time and memory) and the total;
+    the total estimated seconds (units without an estimate count 0)."""
+    total = 0.0
+    for p in plans:
+        for i, s in p.units():
+            cost = solvers.estimate(s, p.points[i])
+            if cost is None:
+                continue
+            total += cost.seconds
+            if cost.seconds >= LONG_UNIT_S:
+                where = p.name + (f" [{p.points[i].param}]" if p.points[i].param else "")
+                print(f"estimate: {where} {s}: {_duration(cost.seconds)}, "
+                      f"{cost.memory / 2**30:.1f} GiB")
+    print(f"run: {sum(len(p.units()) for p in plans)} solver run(s) in {len(plans)} "
+          f"case(s), estimated {_duration(total)}")
+    return total
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:

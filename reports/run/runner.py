@@ -95,10 +95,17 @@ def _collect(plan: CasePlan, staging: Path, executor: Executor, progress: bool |
     got = _Collected()
     bar = tqdm(total=len(units), desc=plan.dir_name, unit="run", leave=False,
                disable=None if progress is None else not progress)
+
+    def running(k: int) -> None:  # the label names the unit that runs now, in plan order
+        if k < len(units):
+            i, s = units[k]
+            bar.set_postfix_str(f"now {s} {plan.points[i].param}".strip())
+
     try:
+        running(0)
         for outcome in executor(plan, units, bool(progress)):
             bar.update(1)
-            bar.set_postfix_str(f"{outcome.solver} {outcome.param}".strip())
+            running(bar.n)
             got.records.append({
                 "solver": outcome.solver, "param": outcome.param, "wall_s": outcome.wall_s,
                 "ok": outcome.result is not None, "error": outcome.error,
