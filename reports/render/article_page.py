@@ -15,7 +15,7 @@ import pandas as pd
 from cases.result import atomic_path, atomic_write_text
 from reports.registry.errors import UserError
 from reports.render import plots
-from reports.render.html_blocks import CSS, escape, img, table_html
+from reports.render.html_blocks import CSS, escape
 from reports.store import layout
 from reports.store.write import write_csv
 from reports.studies.claims import CLAIMS, Claim, judge
@@ -71,14 +71,29 @@ def _check_page(path: Path) -> None:
                         "replace it (remove it or use another --out)")
 
 
-def _claim_html(claim: Claim, finding: Finding, png: bytes | None) -> str:
+def summary_html(table: pd.DataFrame) -> str:
+    """One line per claim — its number (a link to its section), figure, statement, verdict
+    and why in one sentence — the measured numbers and their uncertainty one click away."""
+    rows = "".join(
+        f'<tr class="{COLOURS.get(r["verdict"], "ng")}"><td class="l"><a href="#claim-'
+        f'{r["claim"]}">{r["claim"]}</a></td><td class="l">{escape(str(r["figure"]))}</td>'
+        f'<td class="l">{escape(str(r["statement"]))}</td>'
+        f'<td class="l">{escape(str(r["verdict"]))}</td>'
+        f'<td class="l">{escape(str(r["why"]))}</td></tr>' for _, r in table.iterrows())
+    return ("<table><tr><th class='l'>claim</th><th class='l'>figure</th><th class='l'>"
+            "statement</th><th class='l'>verdict</th><th class='l'>why</th></tr>"
+            + rows + "</table>")
+
+
+def _claim_html(claim: Claim, finding: Finding, png: str | None) -> str:
     return (f'<section id="claim-{claim.number}"><h2>Claim {claim.number} (article Fig. '
             f"{escape(claim.figure)}): {escape(finding.verdict)}</h2>"
             f"<p><i>{escape(claim.text)}</i></p>"
             f"<p><b>Measured:</b> {escape(finding.measured)}</p>"
             f"<p><b>Uncertainty:</b> {escape(finding.uncertainty)}</p>"
             f"<p><b>Why:</b> {escape(finding.why)}</p>"
-            + (img(png, f"claim {claim.number}") if png else
+            + (f'<figure><img alt="claim {claim.number}" loading="lazy" src="{png}"></figure>'
+               if png else
                '<p class="warn">no figure: the results it needs are missing</p>')
             + "</section>")
 
@@ -107,18 +122,18 @@ def write_article(out: Path, article: Article, findings: dict[int, Finding],
             data = pd.concat([p.frame() for p in finding.panels], ignore_index=True)
             _writable(folder / f"{stem}.csv")
             write_csv(folder / f"{stem}.csv", data)
-        sections.append(_claim_html(claim, finding, png))
+        sections.append(_claim_html(claim, finding, None if png is None else
+                                    f"{layout.ARTICLE_DIR}/{stem}.png"))
     _writable(folder / layout.CLAIMS)
     write_csv(folder / layout.CLAIMS, table)
     counts = table["verdict"].value_counts()
     legend = ", ".join(f"{counts.get(v, 0)} {v}" for v in VERDICTS)
     missing = "".join(f'<p class="warn">{escape(k)}: {escape(v)}</p>'
                       for k, v in article.missing.items())
-    shown = table[["claim", "figure", "statement", "measured", "uncertainty", "verdict", "why"]]
     body = (f"<!doctype html><html><head><meta charset='utf-8'><title>{TITLE}</title>"
             f"<style>{CSS}</style></head><body><h1>{TITLE}</h1><p>{escape(header)}</p>"
             f"<p>{escape(legend)}.</p>{missing}<h2>Claims</h2>"
-            + table_html(shown, left=7, row_class=lambda r: COLOURS.get(r["verdict"], "ng"))
+            + summary_html(table)
             + "".join(sections) + "</body></html>")
     atomic_write_text(page, body)
     return page
