@@ -271,7 +271,8 @@ def test_the_other_cases_are_still_reported(res, capsys):
 @pytest.mark.parametrize("command", ["report", "gate"])
 @pytest.mark.parametrize(("where", "needle"), [
     (lambda r: r / "missing", "does not exist"),
-    (lambda r: (r / "file.txt", (r / "file.txt").write_text("x"))[0], "does not exist"),
+    (lambda r: (r / "file.txt", (r / "file.txt").write_text("x"))[0],
+     "is a file, not a directory"),
     (lambda r: r / "hertz", "is a case directory, not a results directory"),
     (lambda r: (r / "empty", (r / "empty").mkdir())[0], "no results in"),
 ], ids=["missing", "a-file", "a-case-directory", "empty"])
