@@ -18,9 +18,8 @@ of the tractions, the semi-widths and the contact area still measure the edge.  
 their edge band left out of both norms — the plane points within one cell (the coarser
 sample spacing) of either solver's contact boundary, by their distance in space to the
 boundary's surface points, so that a plane off the centre, which crosses the boundary
-obliquely, leaves out what passes near it (a sliding sphere at μ = 0.5, the yz plane
-0.75 a off the axis on 20 × 32 cells: vm_yz max 0.104 against 0.10 at the point 0.5
-cell from the boundary and 1.5 cells along the plane from its crossing): at a worn
+obliquely, leaves out what passes near it (the false alarm that showed it:
+benchmarks/README.md, "False alarms"): at a worn
 frictional edge the surface stress is log-singular (docs/formulation.md §2.6), the
 neighbourhood of the singularity carries most of the difference and no grid settles it
 (worn pin, quick set-up, μ = 0.5,
