@@ -12,7 +12,17 @@ from halfspace.stresses import StressEvaluator
 from .problems import fretting, hertz, mindlin, sliding
 
 
-class NormalContact:
+class _Timed:
+    """Time and peak memory of ``self._solve()``."""
+
+    def time_solve(self, *params):
+        self._solve()
+
+    def peakmem_solve(self, *params):
+        self._solve()
+
+
+class NormalContact(_Timed):
     """Hertz, frictionless: Polonsky–Keer CG with zero-padded FFTs."""
 
     params = [128, 512]
@@ -24,17 +34,11 @@ class NormalContact:
     def _solve(self):
         return contact_solver(self.case).solve(profile(self.case), P=self.case.load.P)
 
-    def time_solve(self, n):
-        self._solve()
-
-    def peakmem_solve(self, n):
-        self._solve()
-
     def track_iterations(self, n):
         return self._solve().iterations
 
 
-class PartialSlip:
+class PartialSlip(_Timed):
     """Cattaneo–Mindlin under load control: the normal step, then the tangential one."""
 
     params = [128, 256]
@@ -49,17 +53,11 @@ class PartialSlip:
         normal = solver.solve(h, P=P)
         return normal, solver.solve(h, P=P, Q=(Q, 0.0), prev=normal.state)
 
-    def time_solve(self, n):
-        self._solve()
-
-    def peakmem_solve(self, n):
-        self._solve()
-
     def track_tangential_iterations(self, n):
         return self._solve()[1].iterations
 
 
-class FullSliding:
+class FullSliding(_Timed):
     """Orthotropic full sliding (a far shift): one step of PK + FISTA."""
 
     params = [128, 256]
@@ -71,12 +69,6 @@ class FullSliding:
     def _solve(self):
         return contact_solver(self.case).solve(profile(self.case), P=self.case.load.P,
                                                 shift=(1e3, 0.0))
-
-    def time_solve(self, n):
-        self._solve()
-
-    def peakmem_solve(self, n):
-        self._solve()
 
     def track_iterations(self, n):
         return self._solve().iterations
