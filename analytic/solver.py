@@ -65,6 +65,9 @@ def supports(case: Case) -> str | None:
 def _no_solution_reason(case: Case) -> str | None:
     f = case.friction
     frictional = f.mu1 > 0.0 or f.mu2 > 0.0
+    if case.solver.wear_spread > 0 and case.kind in ("sliding_wear", "fretting"):
+        return (f"solver.wear_spread = {case.solver.wear_spread:g} mm (the half-space "
+                "solver's resolution probe: its wear increments spread over a length)")
     if case.kind == "fretting":
         return fretting_case.no_solution_reason(case)
     if not case.identical_materials and frictional:

@@ -223,6 +223,12 @@ def build(data: dict, *, name: str, source: str, param: str) -> Case:
     load = _load(data["load"], kind)
     if load.tangential_mode == "load" and friction.mu1 == 0:
         raise CaseError("load.Qx/Qy need friction (friction.mu or mu1/mu2 > 0)")
+    solver = _checked("solver", Solver, data.get("solver", {}),
+                      choices={"method": ("cg", "uzawa")}, positive=("tol",),
+                      minimum={"max_iter": 1})
+    if not (math.isfinite(solver.wear_spread) and solver.wear_spread >= 0):
+        raise CaseError(f"solver.wear_spread = {solver.wear_spread!r}: must be a length "
+                        "≥ 0 [mm]")
     case = Case(
         name=name,
         kind=kind,
@@ -233,9 +239,7 @@ def build(data: dict, *, name: str, source: str, param: str) -> Case:
         friction=friction,
         load=load,
         stress=_stress(data.get("stress", {})),
-        solver=_checked("solver", Solver, data.get("solver", {}),
-                        choices={"method": ("cg", "uzawa")}, positive=("tol",),
-                        minimum={"max_iter": 1}),
+        solver=solver,
         sliding_wear=_sliding_wear(data.get("sliding_wear", {}), load)
         if kind == "sliding_wear" else None,
         fretting=_fretting(data.get("fretting", {}), friction) if kind == "fretting" else None,
@@ -247,6 +251,10 @@ def build(data: dict, *, name: str, source: str, param: str) -> Case:
         source=source,
     )
     _check_scales(case)
+    wears = any(v > 0 for v in (case.a.i1, case.a.i2, case.b.i1, case.b.i2))
+    if solver.wear_spread > 0 and not (kind in ("sliding_wear", "fretting") and wears):
+        raise CaseError(f"solver.wear_spread = {solver.wear_spread!r}: a case without wear "
+                        "does not use it (it spreads the wear increments)")
     return case
 
 

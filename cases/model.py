@@ -203,6 +203,9 @@ class Solver:
     method: str = "cg"  # 'cg' (Polonsky-Keer normal + accelerated tangential) or 'uzawa'
     tol: float = 1e-10  # relative residual of the complementarity conditions
     max_iter: int = 20000
+    #: half-width [mm] of the tent each committed wear increment is spread by (the
+    #: resolution probe, halfspace/wear_spread.py); 0: none
+    wear_spread: float = 0.0
 
 
 @dataclass(frozen=True)

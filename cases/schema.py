@@ -50,7 +50,7 @@ SCHEMA: dict[str, Any] = {
     },
     "stress": {"body": str, "depth": float, "nz": int, "x0": float, "y0": float,
                "z_below": float},
-    "solver": {"method": str, "tol": float, "max_iter": int},
+    "solver": {"method": str, "tol": float, "max_iter": int, "wear_spread": float},
     "fem": {"block": float, "depth": float, "h": float, "order": int, "penalty": float,
             "h_surface": float, "contact": str},
     "tolerances": dict,

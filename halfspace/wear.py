@@ -39,6 +39,7 @@ from .contact import STICK, ContactNotConverged, ContactSolver, ContactState, St
 from .friction import wear_norm
 from .output import SOLVER_NAME, step_result
 from .problem import contact_solver, profile, slide_direction, stress_evaluator
+from .wear_spread import spread
 
 OutputCallback = Callable[[StepResult], None]
 
@@ -66,6 +67,12 @@ def solve_evolution(case: Case, progress: bool = False,
     if case.kind == "fretting":
         return fretting(case, progress, on_output)
     raise ValueError(f"case kind {case.kind!r} has no evolution")
+
+
+def _committed(case: Case, dw: np.ndarray) -> np.ndarray:
+    """The wear increment ``dw`` as committed: spread over ``solver.wear_spread``
+    (:mod:`halfspace.wear_spread`, the resolution probe), else as solved."""
+    return spread(dw, case.solver.wear_spread, case.grid.dx, case.grid.dy)
 
 
 def _output_indices(values, unit: float, last: int) -> set[int]:
@@ -108,8 +115,8 @@ def sliding_wear(case: Case, progress: bool = False,
             shift = np.array([state.shift_x, state.shift_y]) + ds
             sol = solver.solve(h, P=case.load.P, shift=shift, prev=state,
                                wear_rate=k_a + k_b)
-            w_a = w_a + k_a * sol.state.p_n
-            w_b = w_b + k_b * sol.state.p_n
+            w_a = w_a + _committed(case, k_a * sol.state.p_n)
+            w_b = w_b + _committed(case, k_b * sol.state.p_n)
             _check_wear(w_a, w_b)
         state = sol.state
         w = w_a + w_b
@@ -172,7 +179,7 @@ def fretting(case: Case, progress: bool = False,
             shift = _shift(u, d, free, last_cycle[k] or state)
             sol, dw_a, dw_b = _fretting_step(case, solver, h0 + w_a + w_b, normal, shift,
                                              state, J, last_cycle[k], free)
-            w_a, w_b = w_a + dw_a, w_b + dw_b
+            w_a, w_b = w_a + _committed(case, dw_a), w_b + _committed(case, dw_b)
             _check_wear(w_a, w_b)
             state = last_cycle[k] = sol.state
             Q = np.array([sol.Qx, sol.Qy])

@@ -31,7 +31,9 @@ Not drawn, and why: ``name`` (the file stem; a directory name, no physics), ``[f
 (it acts on the FEM alone, which the generated cases do not run: hundreds of FEM runs
 are beyond the fast and the full tier), ``[tolerances]`` and ``[not_converged]`` (the
 gate's own settings: the false-alarm rate is that of the defaults), ``[sweep]`` and
-``[quick]`` (each of their points is a case of the kinds above).
+``[quick]`` (each of their points is a case of the kinds above), ``solver.wear_spread``
+(the resolution probe's own setting, which the closed forms decline; its run is drawn by
+``tests/test_fem_fretting_worn.py``).
 """
 
 from __future__ import annotations

@@ -29,6 +29,8 @@ REFUSED = [
     ("jump-tiny-cycles-big", _set(_set(FRET, "jump = 1.0", "jump = 1e-308"), "cycles = 2",
                                   "cycles = 1000000"), [], "fretting.jump = 1e-308"),
     # load keys a kind of case has no use for
+    ("static-wear-spread", TINY.replace("[grid]", "[solver]\nwear_spread = 0.01\n\n[grid]"),
+     [], "solver.wear_spread = 0.01: a case without wear does not use it"),
     ("fretting-Qx", _set(FRET, "approach = 0.001", "approach = 0.001\nQx = 1.0"), [],
      "load.Qx = 1.0: a fretting case does not use it"),
     ("fretting-sliding", _set(FRET, "approach = 0.001", "approach = 0.001\nsliding = true"),
