@@ -225,6 +225,7 @@ INJECT: dict[tuple[str, str], tuple[Case, Inject]] = {
     ("vm_xz", "max"): (SLIP_CASE, dip_plane("xz")),
     ("vm_yz", "l2"): (SLIP_CASE, scale_plane("yz")),
     ("vm_yz", "max"): (SLIP_CASE, dip_plane("yz")),
+    ("P", "rel"): (FRETTING_CASE, scale_scalar("P")),
     ("p_max", "rel"): (SLIP_CASE, scale_scalar("p_max")),
     ("w_max", "rel"): (FRETTING_CASE, scale_scalar("w_max")),
     ("wear_volume", "rel"): (FRETTING_CASE, scale_scalar("wear_volume")),
@@ -237,6 +238,7 @@ INJECT: dict[tuple[str, str], tuple[Case, Inject]] = {
     ("contact_area", "cells"): (SLIP_CASE, grow_area("contact_area")),
     ("stick_area", "cells"): (SLIP_CASE, grow_area("stick_area")),
     ("loop_q", "max"): (FRETTING_CASE, move_loop),
+    ("q_ends", "max"): (FRETTING_CASE, move_loop),
     ("energy", "rel"): (FRETTING_CASE, scale_energy),
 }
 #: p_y's max: p_y is zero in every closed form here, so its dip is the same injection as
@@ -254,6 +256,9 @@ ALSO: dict[tuple[str, str], set[tuple[str, str]]] = {
     # one distance in two units: the row with the tighter tolerance fails first
     ("vm_max_loc", "cells"): {("vm_max_loc", "a0")},
     ("vm_max_loc", "a0"): {("vm_max_loc", "cells")},
+    # the loop moved at every point: its extremes too, and the other way round
+    ("loop_q", "max"): {("q_ends", "max")},
+    ("q_ends", "max"): {("loop_q", "max")},
 }
 
 #: what an exact metamorphic relation adds: it gates every row at one allowance, the

@@ -287,10 +287,17 @@ def test_loop_and_energy_metrics_give_a_known_difference_exactly():
     b = _fretting_run("analytic", [1.0])
     rows = {(q, m): v for q, m, v in compare_tables(a.tables, b.tables, 1.0, mu_P=6.0)}
     assert rows == {("loop_q", "max"): pytest.approx(0.3 / 6.0, rel=1e-14),
+                    ("q_ends", "max"): 0.0,  # the third point is not an extreme
                     ("energy", "rel"): pytest.approx(0.05, rel=1e-12)}
     # Qy counts too: |ΔQ| is the norm of the vector difference
     a.tables["loops"]["Qy"][2] = 0.4  # at the point of ΔQx = 0.3
     rows = {(q, m): v for q, m, v in compare_tables(a.tables, b.tables, 1.0, mu_P=6.0)}
+    assert rows[("loop_q", "max")] == pytest.approx(0.5 / 6.0, rel=1e-14)
+    # the extremes δ = ±1 (the fourth and the last point) are q_ends' points
+    for k, dq in ((3, 0.2), (7, -0.1)):
+        a.tables["loops"]["Qx"][k] += dq
+    rows = {(q, m): v for q, m, v in compare_tables(a.tables, b.tables, 1.0, mu_P=6.0)}
+    assert rows[("q_ends", "max")] == pytest.approx(0.2 / 6.0, rel=1e-12)
     assert rows[("loop_q", "max")] == pytest.approx(0.5 / 6.0, rel=1e-14)
     # loops through other displacements (other steps) are not compared point by point
     a.tables["loops"]["displacement"] = a.tables["loops"]["displacement"] * 0.9
@@ -315,8 +322,9 @@ def test_compare_point_adds_the_cycle_metrics_at_common_output_cycles():
     a = _fretting_run("ic", [1.0, 2.0], dQ=0.3, energy_factor=0.99)
     b = _fretting_run("analytic", [1.0])
     m = compare_point(case, {"ic": a, "analytic": b})
-    got = m[m["quantity"].isin(["loop_q", "energy"])].set_index(["quantity", "metric"])
-    assert list(got["step"]) == [1, 1] and list(got["cycle"]) == [1.0, 1.0]
+    got = m[m["quantity"].isin(["loop_q", "q_ends", "energy"])].set_index(
+        ["quantity", "metric"])
+    assert list(got["step"]) == [1, 1, 1] and list(got["cycle"]) == [1.0, 1.0, 1.0]
     assert got.loc[("loop_q", "max"), "value"] == pytest.approx(0.3 / mu_P, rel=1e-12)
     assert got.loc[("energy", "rel"), "value"] == pytest.approx(0.01, rel=1e-9)
     assert got.loc[("loop_q", "max"), "tolerance_key"] == "default:loop_q"

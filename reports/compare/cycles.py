@@ -46,6 +46,9 @@ def compare_tables(ta: Mapping[str, Mapping], tb: Mapping[str, Mapping], cycle: 
     - ``loop_q`` (max): max |Q_A − Q_B| / ``mu_P`` over the cycle's points of table
       ``loops``, Q = (Qx, Qy); only when both loops pass through the same displacements
       (same path and steps), matched in order;
+    - ``q_ends`` (max): the same over the loop's extremes only, the points where |δ| is
+      the amplitude (the largest |δ| of B's loop): the global tangential load the
+      contact carries at ±A;
     - ``energy`` (rel): |E_A − E_B| / |E_B| of column ``energy`` of table ``cycles``.
 
     A cycle missing from either table, or a column missing from either, is skipped;
@@ -63,8 +66,11 @@ def compare_tables(ta: Mapping[str, Mapping], tb: Mapping[str, Mapping], cycle: 
             if da.size == db.size and np.allclose(da, db, rtol=0.0,
                                                   atol=1e-9 * max(scale_d, _TINY)):
                 diff = np.hypot(qxa - qxb, qya - qyb)
+                ends = np.abs(db) >= (1.0 - 1e-9) * scale_d
                 rows.append(("loop_q", tol.TABLE_QUANTITIES["loop_q"][1],
                              float(np.max(diff)) / mu_P))
+                rows.append(("q_ends", tol.TABLE_QUANTITIES["q_ends"][1],
+                             float(np.max(diff[ends])) / mu_P))
     ca, cb = ta.get("cycles"), tb.get("cycles")
     ja, jb = _cycle_rows(ca, cycle), _cycle_rows(cb, cycle)
     if ja is not None and jb is not None:

@@ -284,7 +284,7 @@ def _scalar_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, hx: float
     location (in cells and in a0) from the solvers' own scalars."""
     h = max(hx, hy)
     rows: list[tuple[str, str, float]] = []
-    scale_of = {"p_max": p0, "vm_max": p0, "vm_max_below": p0, "w_max": a0,
+    scale_of = {"P": p0 * a0 * a0, "p_max": p0, "vm_max": p0, "vm_max_below": p0, "w_max": a0,
                 "wear_volume": a0**3}
     for q in tol.REL_SCALARS:
         if q in ("vm_max", "vm_max_below") and not vm_from_scalars:

@@ -111,7 +111,7 @@ _WEAR = ("wear_a", "wear_b", "w_max", "wear_volume")
 
 def grid_budget(quantity: str, metric: str) -> float:
     """Expected error of a solver on a regular grid of cells (module doc)."""
-    if quantity == "loop_q":
+    if quantity in ("loop_q", "q_ends"):
         return 0.0025
     if metric == "rel":
         return {"vm_max": 0.015, "vm_max_below": 0.02}.get(quantity, 0.03)
@@ -159,7 +159,7 @@ def closed_form_case_term(case: Case, quantity: str, metric: str) -> float:
 
 def closed_form_budget(quantity: str, metric: str) -> float:
     """Expected error of a closed form sampled on a grid (module doc)."""
-    if quantity == "loop_q":
+    if quantity in ("loop_q", "q_ends"):
         return 0.001
     return {"rel": 0.005, "l2": 0.01, "max": 0.02, "cells": 0.5, "a0": 0.02}[metric]
 
@@ -230,7 +230,7 @@ REGISTRY: dict[str, SolverRecord] = {
     "ic": SolverRecord("ic", "halfspace", budget=grid_budget, refine=refine_grid,
                        style={"color": "C0", "ls": "-", "marker": "o", "ms": 3}),
     "fem": SolverRecord("fem", "fem_reference", budget=fem_budget, cell_size=fem_cell,
-                        label=fem_label,
+                        label=fem_label, step_width=fem_cell,
                         refine=refine_fem, model_form=fem_model_form,
                         style={"color": "C1", "ls": "--", "marker": "s", "ms": 3}),
     "analytic": SolverRecord("analytic", "analytic", budget=closed_form_budget,

@@ -9,8 +9,10 @@ p_n, p_x, p_y     l2, max             surface tractions over the contact (where 
 wear_a, wear_b                        solvers have p_n > 0) and wear depths of body a / b
 vm_xz, vm_yz      l2, max             σ_VM on the xz / yz plane through the load centre,
                                       over the contact's neighbourhood
-p_max, w_max,     rel                 scalars of ``summary.csv``; ``vm_max`` the σ_VM
-wear_volume,                          maximum over the planes off the edge band, and
+P, p_max, w_max,  rel                 scalars of ``summary.csv`` (P the normal load: a
+wear_volume,                          result where the approach is held); ``vm_max``
+                                      the σ_VM
+                                      maximum over the planes off the edge band, and
 vm_max,                               ``vm_max_below`` the one at depth z ≥ z_below, its
 vm_max_below                          companion where ``vm_max`` lies near the surface
                                       (:mod:`reports.compare.maxima`)
@@ -21,6 +23,7 @@ vm_max_loc        cells, a0           distance from each σ_VM maximum to the ot
                                       solver's near-maximum set
 loop_q            max                 fretting loop Q(δ) of an output cycle (table
                                       ``loops``), max |Q_A − Q_B| / μP over its points
+q_ends            max                 the same at the loop's extremes δ = ±A only
 energy            rel                 energy dissipated in that cycle (table ``cycles``)
 ================  ==================  ===================================================
 
@@ -90,11 +93,12 @@ from reports.registry.pairs import pair_names
 
 SURFACE_FIELDS = ("p_n", "p_x", "p_y", "wear_a", "wear_b")
 PLANE_FIELDS = {"vm_xz": "xz", "vm_yz": "yz"}
-REL_SCALARS = ("p_max", "w_max", "wear_volume", "vm_max", "vm_max_below")
+REL_SCALARS = ("P", "p_max", "w_max", "wear_volume", "vm_max", "vm_max_below")
 LENGTH_SCALARS = ("a_x", "a_y")
 AREA_SCALARS = ("contact_area", "stick_area")
 #: quantities computed from the solvers' tables per cycle (fretting): table, metric
-TABLE_QUANTITIES = {"loop_q": ("loops", "max"), "energy": ("cycles", "rel")}
+TABLE_QUANTITIES = {"loop_q": ("loops", "max"), "q_ends": ("loops", "max"),
+                    "energy": ("cycles", "rel")}
 
 #: quantity -> its metrics, in the order rows are written.
 QUANTITY_METRICS: dict[str, tuple[str, ...]] = {
