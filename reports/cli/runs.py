@@ -114,17 +114,20 @@ def _announce(plans) -> float:
     the total estimated seconds (units without an estimate count 0)."""
     total = 0.0
     for p in plans:
-        for i, s in p.units():
-            cost = solvers.estimate(s, p.points[i])
+        probes = [(g.case, g.solver) for g in p.probes]  # the resolution probe's runs
+        for case, s in [(p.points[i], s) for i, s in p.units()] + probes:
+            cost = solvers.estimate(s, case)
             if cost is None:
                 continue
             total += cost.seconds
             if cost.seconds >= LONG_UNIT_S:
-                where = p.name + (f" [{p.points[i].param}]" if p.points[i].param else "")
+                where = p.name + (f" [{case.param}]" if case.param else "")
                 print(f"estimate: {where} {s}: {_duration(cost.seconds)}, "
                       f"{cost.memory / 2**30:.1f} GiB")
-    print(f"run: {sum(len(p.units()) for p in plans)} solver run(s) in {len(plans)} "
-          f"case(s), estimated {_duration(total)}")
+    probes = sum(len(p.probes) for p in plans)
+    print(f"run: {sum(len(p.units()) for p in plans)} solver run(s)"
+          + (f" and {probes} resolution probe(s)" if probes else "")
+          + f" in {len(plans)} case(s), estimated {_duration(total)}")
     return total
 
 

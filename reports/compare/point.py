@@ -23,7 +23,14 @@ from reports.compare.verdict import EXTRA_COLUMNS, METRICS_COLUMNS, decide
 from reports.registry import solvers
 from reports.registry import tolerances as tol
 from reports.registry.pairs import pairs
-from reports.registry.resolution import Resolution, unresolved
+from reports.registry.resolution import (
+    PROBE_SOLVER,
+    PROBED_FLOORS,
+    Resolution,
+    probed_pair,
+    probed_width,
+    unresolved,
+)
 
 #: metrics written beside a gated one but never gated: -> (the gated metric whose
 #: tolerance they are shown against, why they are not gated)
@@ -31,37 +38,66 @@ _SHOWN = {KINK: ("max", KINK_NOTE), maxima.EDGE: ("rel", maxima.EDGE_NOTE),
           maxima.SURFACE: ("rel", maxima.SURFACE_NOTE)}
 
 
-def point_rows(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:
-    """The metric rows of one sweep point, before the verdict: every pair, every common
-    output step, with the status and tolerance the comparisons see themselves."""
+def pair_cell(case: Case, a: str, b: str) -> float:
+    """The coarser of the cells of solvers ``a`` and ``b`` on ``case`` (0: neither has one)."""
+    own = (solvers.record(n).cell_size(case) for n in (a, b))
+    return max((c for c in own if math.isfinite(c)), default=0.0)
+
+
+def common_steps(ra: RunResult, rb: RunResult) -> list[tuple[int, StepResult, StepResult]]:
+    """(step number, step of A, step of B) for every output step both results have."""
+    steps_a = {s.number(i): s for i, s in enumerate(ra.steps)}
+    steps_b = {s.number(i): s for i, s in enumerate(rb.steps)}
+    return [(n, steps_a[n], steps_b[n]) for n in sorted(set(steps_a) & set(steps_b))]
+
+
+def step_values(case: Case, pair: str, ra: RunResult, rb: RunResult, sa: StepResult,
+                sb: StepResult, cell: float) -> list[tuple[str, str, float]]:
+    """(quantity, metric, value) of one common step of A (``ra``) against reference B
+    (``rb``): the fields and scalars (:func:`reports.compare.metrics.compare_steps`) and,
+    at an output cycle, the loop and its energy (:func:`reports.compare.cycles.compare_tables`);
+    ``cell`` the pair's (:func:`pair_cell`).  The one definition of every row's value."""
     a0, p0 = case.hertz_scales
-    mu_P = friction_scale(case)
     x0, y0 = case.plane_centre
-    own = {n: solvers.record(n).cell_size(case) for n in results}
+    rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=x0, y0=y0, cell=cell,
+                         z_below=case.stress.z_below,
+                         vm_rel=tol.tolerance(case, pair, "vm_max", "rel")[0])
+    cycle = scalar(sb, "cycle")
+    if math.isfinite(cycle):
+        rows += compare_tables(ra.tables, rb.tables, cycle, friction_scale(case))
+    return rows
+
+
+def point_rows(case: Case, results: Mapping[str, RunResult], probed: bool = False
+               ) -> pd.DataFrame:
+    """The metric rows of one sweep point, before the verdict: every pair, every common
+    output step, with the status and tolerance the comparisons see themselves.
+    ``probed``: the run probes this point (:mod:`reports.studies.probe`), so the wear
+    floors of the pairs it judges count the probing solver's cells
+    (:mod:`reports.registry.resolution`)."""
+    x0, y0 = case.plane_centre
+    probed = probed and probed_width(case, list(results)) is not None
+    own = solvers.record(PROBE_SOLVER).cell_size(case) if probed else math.nan
     records = []
     for sa_name, sb_name in pairs(list(results)):
         pair = f"{sa_name}-{sb_name}"
-        cell = max((c for c in (own[sa_name], own[sb_name]) if math.isfinite(c)),
-                   default=0.0)
-        steps_a = {s.number(i): s for i, s in enumerate(results[sa_name].steps)}
-        steps_b = {s.number(i): s for i, s in enumerate(results[sb_name].steps)}
-        for n in sorted(set(steps_a) & set(steps_b)):
-            sa, sb = steps_a[n], steps_b[n]
-            rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=x0, y0=y0,
-                                 cell=cell, z_below=case.stress.z_below,
-                                 vm_rel=tol.tolerance(case, pair, "vm_max", "rel")[0])
-            cycle = scalar(sb, "cycle")
-            if math.isfinite(cycle):
-                rows += compare_tables(results[sa_name].tables, results[sb_name].tables,
-                                       cycle, mu_P)
+        ra, rb = results[sa_name], results[sb_name]
+        cell = pair_cell(case, sa_name, sb_name)
+        for n, sa, sb in common_steps(ra, rb):
+            rows = step_values(case, pair, ra, rb, sa, sb, cell)
             exact = solvers.exact_pair(pair)
             resolution = None if exact else step_resolution(sa, sb, cell, x0, y0)
+            # the probe measures what the coarser element does to the worn annulus
+            # (reports.registry.resolution): its wear floors count the probing solver's cells
+            wear_resolution = step_resolution(sa, sb, own, x0, y0) \
+                if probed and not exact and probed_pair(pair) else resolution
             for quantity, metric, value in rows:
                 shown = None if exact else _SHOWN.get(metric)  # a band's max, never gated
                 limit, key = tol.tolerance(
                     case, pair, quantity, _SHOWN[metric][0] if metric in _SHOWN else metric)
                 status, note = tol.status(case, quantity)
-                coarse = unresolved(quantity, metric, resolution)
+                coarse = unresolved(quantity, metric, wear_resolution
+                                    if quantity in PROBED_FLOORS else resolution)
                 if status == tol.GATED and (shown or coarse):
                     status, note = tol.NOT_CONVERGED, coarse or shown[1]
                 records.append({

@@ -9,6 +9,9 @@ this order:
 1. the grid study (``run --convergence``): rows of a quantity that the grids do not
    settle beyond the solver's budget become "not converged" (:class:`Flags`,
    :func:`reports.studies.gridstudy.flags`);
+   the resolution probe of worn points (:func:`reports.studies.probe.flags`): rows of a
+   quantity that a step spread over the FEM's element moves by more than half their
+   tolerance likewise;
 2. the combined numerical uncertainty U of the pair (Eq. U1): the tolerance of a row
    still gated becomes min(U, tolerance) (:func:`reports.studies.uncertainty.values`);
 3. the cycle-jump study (``run --jump-study``): as 1, with the jump's levels.
@@ -60,12 +63,13 @@ def _flag(out: pd.DataFrame, flags: Flags | None) -> None:
 
 
 def decide(rows: pd.DataFrame, *, grid: Flags | None = None,
-           uncertainty: np.ndarray | None = None, jump: Flags | None = None
-           ) -> pd.DataFrame:
+           uncertainty: np.ndarray | None = None, jump: Flags | None = None,
+           probe: Flags | None = None) -> pd.DataFrame:
     """metrics.csv from the comparisons' ``rows`` and a run's study evidence (module doc):
     status, tolerance, ``tolerance_kind``, ``budget``, ``uncertainty`` and ``passed``."""
     out = tol.with_tolerance_columns(rows).reset_index(drop=True)
     _flag(out, grid)
+    _flag(out, probe)
     if uncertainty is not None and not out.empty:
         u = np.where(out["status"].to_numpy() == tol.GATED,
                      np.asarray(uncertainty, float), np.nan)

@@ -55,6 +55,10 @@ class SolverRecord:
     #: relative error of what the solver models differently from the half-space problem
     #: (quantity, metric) -> term, for uncertainty-based tolerances (reports.studies.uncertainty)
     model_form: Callable[[str, str], float] = no_model_form
+    #: the width [mm] over which the solver resolves a step of the worn surface (an
+    #: element: its surface is polynomial within one), for the resolution probe
+    #: (reports.studies.probe); None: it holds a step sharp, or has no surface
+    step_width: Callable[[Case], float] | None = None
     closed_form: bool = False
     solve_attr: str = "solve"
     supports_attr: str = "supports"

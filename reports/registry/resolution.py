@@ -24,12 +24,19 @@ Floors, measured with the half-space solver against the closed forms on generate
   ``wear_volume``): a slip zone of 5 cells (the first fretting cycle's wear in partial
   slip concentrates in the annulus as (r − c)^3/2, and in gross slip the wear depth
   follows the pressure's √ edge);
-- the fretting loop (``loop_q``): a slip zone of 1.5 cells and a contact radius of 8
-  cells (the loop's tangential compliance converges at order 2–3: 0.19 % of μP at 10
-  cells per radius, 0.4 % at 6.3, about 1 % at 5, against a budget of 0.25 %);
+- the fretting loop (``loop_q``, and ``q_ends`` at its extremes): a slip zone of 1.5
+  cells and a contact radius of 8 cells (the loop's tangential compliance converges at
+  order 2–3: 0.19 % of μP at 10 cells per radius, 0.4 % at 6.3, about 1 % at 5, against
+  a budget of 0.25 %);
 - the energy dissipated in a cycle (``energy``): as the wear, a slip zone of 5 cells
   (it is dissipated in the slip zone: 5.3 % at 2.1 cells, against 3 %), and a contact
   radius of 8 cells;
+- where the resolution probe runs (a worn point, the half-space solver beside a solver
+  with a step width, :mod:`reports.studies.probe`), the floors of the wear quantities
+  (:data:`PROBED_FLOORS`) count the probing solver's own cells in the rows of the pairs
+  it judges: what the coarser element does to the narrow worn annulus is what the probe
+  measures (it predicts the FEM's distance in the wear, ``benchmarks/README.md``, "The
+  resolution probe"), and the floor is left to judge the probing solver's own grid;
 - the σ_VM planes (``vm_xz``, ``vm_yz``): the plane one cell inside the contact edge,
   a − |y0| for the xz plane through y0 (a − |x0| for the yz plane) — a plane off the
   centre within a cell of the edge crosses the contact where its discretised edge
@@ -40,6 +47,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+
+from cases.model import Case
+from reports.registry import solvers
 
 
 @dataclass(frozen=True)
@@ -64,6 +74,7 @@ FLOORS: dict[str, tuple[tuple[str, float], ...]] = {
     "w_max": (("slip", 5.0),),
     "wear_volume": (("slip", 5.0),),
     "loop_q": (("slip", 1.5), ("contact", 8.0)),
+    "q_ends": (("slip", 1.5), ("contact", 8.0)),
     "energy": (("slip", 5.0), ("contact", 8.0)),
     "vm_xz": (("inset_xz", 1.0),),
     "vm_yz": (("inset_yz", 1.0),),
@@ -84,3 +95,33 @@ def unresolved(quantity: str, metric: str, resolution: Resolution | None) -> str
             return (f"not resolved: the {_NAMES[length]} spans {have:.2g} cells, the budget "
                     f"of {quantity} holds from {cells:g} (reports.registry.resolution)")
     return ""
+
+
+#: the solver that probes: its wear increments can be spread (``solver.wear_spread``)
+PROBE_SOLVER = "ic"
+#: the quantities whose floors count the probing solver's cells where the probe judges
+#: (module doc)
+PROBED_FLOORS = ("wear_a", "wear_b", "w_max", "wear_volume")
+
+
+def wears(case: Case) -> bool:
+    """Whether ``case`` wears: a sliding-wear or fretting case with a wear coefficient."""
+    if case.kind not in ("sliding_wear", "fretting"):
+        return False
+    return any(v > 0 for v in (case.a.i1, case.a.i2, case.b.i1, case.b.i2))
+
+
+def probed_width(case: Case, solver_names: list[str]) -> float | None:
+    """The widest step width [mm] (:attr:`reports.registry.record.SolverRecord.step_width`)
+    among ``solver_names`` on a worn ``case`` run beside :data:`PROBE_SOLVER`: what the
+    resolution probe spreads the wear over (None: nothing to probe)."""
+    if not wears(case) or PROBE_SOLVER not in solver_names:
+        return None
+    widths = [float(w(case)) for s in solver_names
+              if (w := solvers.record(s).step_width) is not None]
+    return max(widths) if widths else None
+
+
+def probed_pair(pair: str) -> bool:
+    """Whether the probe judges the rows of ``pair``: it holds a solver with a step width."""
+    return any(solvers.record(s).step_width is not None for s in pair.split("-", 1))

@@ -29,6 +29,7 @@ from reports.registry.tolerances import UNCERTAINTY
 from reports.store.layout import METRICS
 from reports.store.readers import gated, ungated
 from reports.store.results import CaseResults, Scan, not_converged, scan
+from reports.studies import probe
 from reports.studies.gridstudy import note_lines
 from reports.studies.jumpstudy import note_lines_jump
 
@@ -142,11 +143,12 @@ def stale_case_file(mf: dict) -> bool:
 
 #: why a row is shown and not gated, by the start of its note (the notes' own texts:
 #: reports.registry.tolerances, reports.registry.resolution, reports.compare.point,
-#: reports.studies.gridstudy), as the gate's per-case line names them
+#: reports.studies.gridstudy, reports.studies.probe), as the gate's per-case line names
+#: them
 REASONS = (("declared: ", "declared"), ("not resolved", "below a resolution floor"),
            (KINK_NOTE, "stick band"), (EDGE_NOTE, "edge band"),
            (SURFACE_NOTE, "maximum on the surface"), ("grid study", "grid study"),
-           ("jump study", "jump study"))
+           ("jump study", "jump study"), (probe.NOTE, "resolution probe"))
 
 
 def reason_of(note: str) -> str:

@@ -19,6 +19,7 @@ from reports.render.html_blocks import CSS, escape, fig, table_html
 from reports.render.html_sections import (
     convergence_section,
     jump_section,
+    probe_section,
     provenance_html,
     sweep_check_section,
     thresholds_html,
@@ -62,6 +63,7 @@ def case_section(case: CaseResults) -> str:
     parts += _metrics(case)
     parts += convergence_section(case)
     parts += jump_section(case)
+    parts += probe_section(case)
     parts += sweep_check_section(case)
     parts.append(provenance_html(mf))
     parts.append("</section>")

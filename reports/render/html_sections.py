@@ -12,10 +12,10 @@ from typing import Any
 import pandas as pd
 
 from reports.render.html_blocks import escape, table_html
-from reports.render.study_frames import convergence_frame, jump_frame, study_frame
+from reports.render.study_frames import convergence_frame, jump_frame, probe_frame, study_frame
 from reports.store import layout
 from reports.store.results import CaseResults
-from reports.studies import gridstudy
+from reports.studies import gridstudy, probe
 
 
 def _study_row_class(row: pd.Series) -> str:
@@ -90,6 +90,32 @@ def jump_section(case: CaseResults) -> list[str]:
                                          + escape(", ".join(dict.fromkeys(bad["quantity"])))
                                          if len(bad) else "") + "</p>")
     table = table_html(study, left=4, row_class=_study_row_class)
+    parts.append(f"<div class='scroll'>{table}</div>" if len(study) > 40 else table)
+    parts.append("</div>")
+    return parts
+
+
+def probe_section(case: CaseResults) -> list[str]:
+    """The resolution probe of worn points (:mod:`reports.studies.probe`); nothing where
+    none ran."""
+    study = probe_frame(case)
+    if study.empty:
+        return []
+    width, spread = case.probe["width"].max(), case.probe["spread"].max()
+    out = study[study["status"] != "gated"]
+    parts = [f'<h3 id="probe-{escape(case.name)}">Resolution probe</h3><div class="convergence">',
+             "<p>The half-space solver again with every committed wear increment spread "
+             f"over {escape(f'{spread:.3g}')} mm ({probe.SPREAD:g} of the "
+             f"{escape(f'{width:.3g}')} mm element of the FEM's surface): a row whose "
+             f"quantity moves by more than {probe.FRACTION:g} of its tolerance is a number "
+             "that element cannot give, and is shown, not gated "
+             "(<code>reports/README.md</code>, \"The resolution probe\").</p>",
+             f'<p class="{"ok" if out.empty else "bad"}">{len(study) - len(out)} / '
+             f"{len(study)} probed rows admitted to the gate"
+             + (": not gated " + escape(", ".join(dict.fromkeys(out["quantity"])))
+                if len(out) else "") + "</p>"]
+    table = table_html(study, left=5, row_class=lambda r: "" if r["status"] == "gated"
+                       else "bad")
     parts.append(f"<div class='scroll'>{table}</div>" if len(study) > 40 else table)
     parts.append("</div>")
     return parts

@@ -11,7 +11,7 @@ import pandas as pd
 
 from reports.registry import solvers
 from reports.store.results import CaseResults
-from reports.studies import convergence, gridstudy
+from reports.studies import convergence, gridstudy, probe
 
 
 def scales(case: CaseResults) -> dict[str, tuple[float, float]]:
@@ -88,3 +88,18 @@ def jump_frame(case: CaseResults) -> pd.DataFrame:
         "f(J/4)": js["f1"], "f(J/2)": js["f2"], "f(J)": js["f3"],
         "halving J [%]": 100 * js["change_halved"], "order p": js["order"],
         "f_ext": js["f_extrapolated"], "status": js["status"], "note": js["note"]})
+
+
+def probe_frame(case: CaseResults) -> pd.DataFrame:
+    """The resolution probe (``probe.csv``, :mod:`reports.studies.probe`) for the page: per
+    probed row, the quantity's change under the spread wear step, the row's tolerance and
+    whether the probe admits it to the gate."""
+    table = case.probe
+    if table.empty:
+        return pd.DataFrame()
+    table = probe.admitted(case.metrics, table)
+    return pd.DataFrame({
+        "param": table["param"], "pair": table["pair"], "cycle": table["cycle"],
+        "quantity": table["quantity"], "metric": table["metric"],
+        "sensitivity": table["sensitivity"], "tolerance": table["tolerance"],
+        "status": table["admitted"].map({True: "gated", False: "not gated"})})

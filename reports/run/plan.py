@@ -11,12 +11,13 @@ from typing import Any
 
 from cases.loader import case_path, load_case
 from cases.model import Case, CaseError
-from reports.registry import solvers
+from reports.registry import resolution, solvers
 from reports.registry.errors import SolverUnavailable, UserError
 from reports.registry.pairs import pairs
 from reports.registry.tolerances import check_keys
 from reports.run import deadline
 from reports.store import layout
+from reports.studies import probe
 
 
 def check_fits(case: Case) -> None:
@@ -137,6 +138,8 @@ class CasePlan:
     grids: list[Any] = field(default_factory=list)  # their coarse runs (GridRun)
     jump_study: bool = False  # run --jump-study: cycle-jump studies (reports.studies.jumpstudy)
     jumps: list[Any] = field(default_factory=list)  # their runs at J/2, J/4 (GridRun)
+    #: the resolution probe's runs of worn points (reports.studies.probe.ProbeRun)
+    probes: list[Any] = field(default_factory=list)
     warnings: list[str] = field(default_factory=list)  # said before any work (grid_warning)
     limits: Limits = field(default_factory=Limits)  # memory, time, deadlines
 
@@ -266,4 +269,23 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
                         f"case ({why or 'no solver chosen'})")
     for i, s in plan.units():
         plan.limits.check(points[i], s)
-    return plan
+    return _add_probes(plan)
+
+
+def _add_probes(plan: CasePlan) -> CasePlan:
+    """``plan`` with a resolution probe for every worn point where a solver with a step
+    width runs beside :data:`reports.studies.resolution.PROBE_SOLVER`
+    (:mod:`reports.studies.probe`), checked like the units (``CaseError`` naming the point)."""
+    runs = []
+    for i, case in enumerate(plan.points):
+        width = resolution.probed_width(case, plan.applicable(case))
+        if width is None:
+            continue
+        c = probe.probe_case(case, width)
+        reason = solvers.unsupported(resolution.PROBE_SOLVER, c)
+        if reason is not None:
+            where = case.name + (f" [{case.param}]" if case.param else "")
+            raise CaseError(f"resolution probe: {where}: {reason}")
+        plan.limits.check(c, resolution.PROBE_SOLVER)
+        runs.append(probe.ProbeRun(i, resolution.PROBE_SOLVER, width, c))
+    return replace(plan, probes=runs)

@@ -39,14 +39,14 @@ from reports.compare import verdict
 from reports.compare.point import point_rows
 from reports.registry.errors import UserError
 from reports.registry.tolerances import TOLERANCE_COLUMNS
-from reports.run import study_runs
+from reports.run import probe_runs, study_runs
 from reports.run.plan import CasePlan
 from reports.run.units import Executor, UnitOutcome, failure_line, serial_executor
 from reports.store import layout, manifest
 from reports.store.event_table import events_frame
 from reports.store.staging import case_lock, claim_staging, remove_dir
 from reports.store.write import jsonable, summary_frame, write_csv, write_unit
-from reports.studies import gridstudy, jumpstudy, uncertainty
+from reports.studies import gridstudy, jumpstudy, probe, uncertainty
 
 
 @dataclass
@@ -71,6 +71,7 @@ class _Collected:
     rows: dict[tuple[int, int], list[dict[str, Any]]] = field(default_factory=dict)
     events: dict[tuple[int, int], list[dict[str, Any]]] = field(default_factory=dict)
     metrics: dict[int, pd.DataFrame] = field(default_factory=dict)
+    kept: dict[tuple[int, str], RunResult] = field(default_factory=dict)  # for the probe
     records: list[dict[str, Any]] = field(default_factory=list)
     failures: list[UnitOutcome] = field(default_factory=list)
 
@@ -93,6 +94,7 @@ def _collect(plan: CasePlan, staging: Path, executor: Executor, progress: bool |
     order = {s: k for k, s in enumerate(plan.solvers)}
     pending: dict[int, dict[str, RunResult]] = {}
     got = _Collected()
+    keep = probe_runs.kept(plan)
     bar = tqdm(total=len(units), desc=plan.dir_name, unit="run", leave=False,
                disable=None if progress is None else not progress)
 
@@ -125,13 +127,17 @@ def _collect(plan: CasePlan, staging: Path, executor: Executor, progress: bool |
             except Exception as exc:  # a result that cannot be written is a failed run
                 got.failures.append(_failed(outcome, "writing its results", exc))
                 break
+            if (outcome.index, outcome.solver) in keep:
+                got.kept[(outcome.index, outcome.solver)] = outcome.result
             bucket = pending.setdefault(outcome.index, {})
             bucket[outcome.solver] = outcome.result
             if set(bucket) != expected[outcome.index]:
                 continue
             ordered = {s: bucket[s] for s in sorted(bucket, key=order.get)}
             try:
-                got.metrics[outcome.index] = point_rows(plan.points[outcome.index], ordered)
+                got.metrics[outcome.index] = point_rows(
+                    plan.points[outcome.index], ordered,
+                    probed=any(g.point == outcome.index for g in plan.probes))
             except Exception as exc:  # a result the comparisons cannot digest
                 got.failures.append(_failed(outcome, "comparing its results", exc))
                 break
@@ -208,6 +214,10 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
         fine = {(i, plan.solvers[k]): rows for (i, k), rows in got.rows.items()}
         jumps = study_runs.run_jumps(plan, executor, progress, fine)
         got.records += jumps.records
+    probed = None
+    if plan.probes and not got.failures:  # the resolution probe of worn points
+        probed = probe_runs.run_probes(plan, executor, progress, got.kept)
+        got.records += probed.records
     unit_wall = float(sum(r["wall_s"] for r in got.records))
     run = CaseRun(plan.dir_name, None, wall_s=time.perf_counter() - t0, unit_wall_s=unit_wall)
     if got.failures:
@@ -225,6 +235,8 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     if jumps is not None:
         write_csv(staging / layout.JUMP_STUDY, jumps.table)
         summary = jumpstudy.flag_summary_jump(summary, jumps.table)
+    if probed is not None:
+        write_csv(staging / layout.PROBE, probed.table)
     write_csv(staging / layout.SUMMARY, summary)
     if got.events:  # some solver watched for regime events (reports.store.event_table)
         write_csv(staging / layout.EVENTS,
@@ -237,7 +249,9 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
             grid=None if study is None else gridstudy.flags(rows, study.table),
             uncertainty=None if study is None else uncertainty.values(
                 rows, study.table, {c.param: c for c in plan.points}),
-            jump=None if jumps is None else jumpstudy.flags_jump(rows, jumps.table))
+            jump=None if jumps is None else jumpstudy.flags_jump(rows, jumps.table),
+            probe=None if probed is None else probe.flags(rows, probed.table,
+                                                          probed.failed))
     else:  # a single solver: the header only
         metrics = pd.DataFrame(columns=verdict.METRICS_COLUMNS + (
             TOLERANCE_COLUMNS if study is not None else []))

@@ -99,6 +99,7 @@ class Study:
     solver, grid), their manifest records, and the table built from them."""
 
     rows: dict[tuple[int, str, int], list[dict[str, Any]]] = field(default_factory=dict)
+    results: dict[tuple[int, str, int], Any] = field(default_factory=dict)  # keep_results
     errors: dict[tuple[int, str, int], str] = field(default_factory=dict)
     records: list[dict[str, Any]] = field(default_factory=list)
     table: pd.DataFrame | None = None
@@ -116,13 +117,14 @@ def run_grids(plan: CasePlan, executor: Executor, progress: bool | None,
 
 
 def run_levels(plan: CasePlan, runs: list[Any], executor: Executor, progress: bool | None,
-               label: str, describe: Callable[[Any], dict[str, Any]]) -> Study:
+               label: str, describe: Callable[[Any], dict[str, Any]],
+               keep_results: bool = False) -> Study:
     """Run the extra levels ``runs`` of a study (items with ``point, solver, level,
     case``) through ``executor`` without fields: their summary rows (or why there are
-    none) keyed (point, solver, level), and their manifest records, with ``describe``'s
-    keys, in the planned order."""
+    none) keyed (point, solver, level), the results themselves if ``keep_results``, and
+    their manifest records, with ``describe``'s keys, in the planned order."""
     sub = replace(plan, points=[g.case for g in runs], staging=None,
-                              grids=[], jumps=[])
+                  grids=[], jumps=[], probes=[])
     units = [(k, g.solver) for k, g in enumerate(runs)]
     study = Study()
     order = {s: k for k, s in enumerate(plan.solvers)}
@@ -136,6 +138,8 @@ def run_levels(plan: CasePlan, runs: list[Any], executor: Executor, progress: bo
             key = (g.point, g.solver, g.level)
             if outcome.result is not None:  # keep the scalars only, not the fields
                 study.rows[key] = outcome.result.summary_rows()
+                if keep_results:
+                    study.results[key] = outcome.result
             else:
                 study.errors[key] = f"{outcome.kind or 'failed'}: {outcome.error}"
             keyed.append(((g.point, order.get(g.solver, len(order)), g.level), {

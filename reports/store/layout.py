@@ -13,6 +13,9 @@
     DIR/<case>/jump_study.csv                     run --jump-study: one row per (solver,
                                                   param, output cycle, quantity) of the
                                                   cycle-jump studies (reports.studies.jumpstudy)
+    DIR/<case>/probe.csv                          worn points the FEM runs: one row per
+                                                  (param, pair, step, quantity, metric) of
+                                                  the resolution probe (reports.studies.probe)
     DIR/<case>/fields/<solver>/<param>/step_NNNN.npz   surface fields and planes
     DIR/<case>/fields/<solver>/<param>/step_NNNN.vtu   FEM meshes (ParaView)
     DIR/<case>/fields/<solver>/<param>/step_NNNN_surface.vtu   grid steps: surface cells
@@ -39,6 +42,7 @@ SUMMARY = "summary.csv"
 METRICS = "metrics.csv"
 CONVERGENCE = "convergence.csv"
 JUMP_STUDY = "jump_study.csv"
+PROBE = "probe.csv"
 EVENTS = "events.csv"
 FIELDS = "fields"
 PARTIAL_SUFFIX = ".partial"
@@ -55,7 +59,8 @@ ARTICLE_DIR = "article"
 CLAIMS = "claims.csv"
 
 #: names a case directory may hold; a directory with none of them is not a result
-OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, JUMP_STUDY, EVENTS, FIELDS,
+OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, JUMP_STUDY, PROBE, EVENTS,
+                       FIELDS,
                        SWEEP_PLOT, SWEEP_CHECK})
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9._=+-]")

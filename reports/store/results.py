@@ -38,8 +38,10 @@ from reports.store.readers import (
 from reports.store.study_tables import (
     CONVERGENCE_COLUMNS,
     JUMP_COLUMNS,
+    PROBE_COLUMNS,
     read_convergence,
     read_jump_study,
+    read_probe,
 )
 
 # --------------------------------------------------------------------- results
@@ -93,6 +95,14 @@ class CaseResults:
             return pd.DataFrame(columns=JUMP_COLUMNS)
         return read_result(path, read_jump_study)
 
+    @cached_property
+    def probe(self) -> pd.DataFrame:
+        """The resolution probe of worn points (an empty table where none ran)."""
+        path = self.path / layout.PROBE
+        if not path.exists():
+            return pd.DataFrame(columns=PROBE_COLUMNS)
+        return read_result(path, read_probe)
+
     @property
     def events(self) -> pd.DataFrame:
         """The regime events of the runs (``events.csv``, :mod:`reports.store.event_table`; an
@@ -121,6 +131,7 @@ class CaseResults:
             read_result(self.path / layout.SWEEP_CHECK, read_sweep_check)
         _ = self.convergence
         _ = self.jump_study
+        _ = self.probe
         _ = self.events
 
 

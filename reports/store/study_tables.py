@@ -1,6 +1,7 @@
 """The study tables of a results directory: ``convergence.csv`` (grid studies,
-``run --convergence``) and ``jump_study.csv`` (cycle-jump studies, ``run --jump-study``),
-their columns, the statuses a row may hold, and their readers."""
+``run --convergence``), ``jump_study.csv`` (cycle-jump studies, ``run --jump-study``) and
+``probe.csv`` (the resolution probe, :mod:`reports.studies.probe`), their columns, the
+statuses a row may hold, and their readers."""
 
 from __future__ import annotations
 
@@ -22,6 +23,11 @@ CONVERGENCE_COLUMNS = ["solver", "param", "step", "quantity", "h1", "h2", "h3", 
 JUMP_COLUMNS = ["solver", "param", "cycle", "step", "quantity", "h1", "h2", "h3", "f1", "f2",
                 "f3", "change_halved", "order", "f_extrapolated", "gci_fine", "status",
                 "gci_coarse", "asymptotic", "note", "cell_size"]
+
+#: the columns of ``probe.csv``: the sensitivity of each probed row's quantity, by the
+#: row's metric, to a wear step spread over ``spread`` mm, for an element ``width`` mm wide
+PROBE_COLUMNS = ["param", "pair", "step", "cycle", "quantity", "metric", "sensitivity",
+                 "width", "spread"]
 
 
 def read_study(path: Path, columns: list[str], required: list[str]) -> pd.DataFrame:
@@ -47,3 +53,9 @@ def read_convergence(path: Path) -> pd.DataFrame:
 def read_jump_study(path: Path) -> pd.DataFrame:
     """``jump_study.csv`` (a parser for :func:`reports.store.readers.read_result`)."""
     return read_study(path, JUMP_COLUMNS, JUMP_COLUMNS)
+
+
+def read_probe(path: Path) -> pd.DataFrame:
+    """``probe.csv`` (a parser for :func:`reports.store.readers.read_result`)."""
+    return read_csv(path, required=PROBE_COLUMNS, text=("param", "pair", "quantity", "metric"),
+                    numeric=["cycle", "sensitivity", "width", "spread"], integer=["step"])

@@ -1,0 +1,128 @@
+"""The resolution probe: which compared quantities of a worn contact a solver's surface
+resolution can give (issue 51; the runs: :mod:`reports.run.probe_runs`).
+
+Wear leaves a step in the worn profile where slip meets stick. The half-space solver holds
+it sharp at a cell face; a solver whose surface is polynomial within an element
+(the FEM, :attr:`reports.registry.record.SolverRecord.step_width`) resolves it only
+across about an element, and quantities that depend on the step's sharpness part the
+two solvers by more than either's discretisation error would suggest
+(docs/fem-notes.md, part 5).  The probe measures that dependence, point by point: the
+half-space solver runs the point once more with every committed wear increment spread by
+a tent of half-width r = :data:`SPREAD` × the element width
+(:mod:`halfspace.wear_spread`), and each quantity's change is computed by the same
+metric, on the same samples, as the pair's row (:func:`reports.compare.point.step_values`).
+
+A row of a pair with such a solver whose quantity moves by more than :data:`FRACTION` of
+the row's tolerance is not a number that element gives: it is shown, not gated, with the
+measured sensitivity and the element width that would bring it under the limit were the
+sensitivity to fall in proportion to the width (a first-order guess, not a promise).
+Elsewhere the row is gated as before.  Points without wear (static cases, wear
+coefficients zero) have no step and are not probed.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from cases.model import Case
+from reports.compare.verdict import Flags
+from reports.registry.resolution import probed_pair
+
+#: the spread's half-width in element widths.  Measured (docs/fem-notes.md, part 5, "Why";
+#: the quick grid in ``benchmarks/README.md``, "The resolution probe"): a tent of 0.5–0.8
+#: element widths moves the half-space solver onto the FEM's stick area, wear and energy;
+#: the lower end, since on a grid whose cell is near the element the spread acts more
+SPREAD = 0.5
+#: how the notes of the rows the probe does not gate start
+NOTE = "resolution probe"
+#: a row is gated only where the probe moves its quantity by at most this part of its
+#: tolerance
+FRACTION = 0.5
+
+
+@dataclass(frozen=True)
+class ProbeRun:
+    """The probe of sweep point ``point``: ``solver`` on ``case``, its wear spread over
+    ``width`` × :data:`SPREAD` (``level`` 0: one run, not a refinement level)."""
+
+    point: int
+    solver: str
+    width: float
+    case: Case
+    level: int = 0
+
+
+def probe_case(case: Case, width: float) -> Case:
+    """``case`` with its wear increments spread over :data:`SPREAD` × ``width``."""
+    return case.with_changes(solver=dataclasses.replace(case.solver,
+                                                         wear_spread=SPREAD * width))
+
+
+def probed_pairs(pair_names: list[str]) -> list[str]:
+    """The pairs whose rows the probe judges: those with a solver that has a step width."""
+    return [p for p in pair_names if probed_pair(p)]
+
+
+def _key(frame: pd.DataFrame) -> pd.Series:
+    return (frame["param"].astype(str) + "|" + frame["pair"].astype(str) + "|"
+            + frame["step"].astype(int).astype(str) + "|" + frame["quantity"].astype(str)
+            + "|" + frame["metric"].astype(str))
+
+
+def flags(metrics: pd.DataFrame, table: pd.DataFrame,
+          failed: Mapping[str, str] | None = None) -> Flags | None:
+    """The probe's findings on ``metrics`` (rows by position) of the points it probed (the
+    params of ``table`` and of ``failed``, param -> why its probe run failed): a row of a
+    probed pair whose quantity moves under the probe by more than :data:`FRACTION` of its
+    tolerance is dropped, with the measured sensitivity (module doc); so is one the probe
+    did not measure, or measured as NaN, or whose probe run failed."""
+    failed = dict(failed or {})
+    if metrics.empty or (table.empty and not failed):
+        return None
+    sens = dict(zip(_key(table), table.itertuples(index=False), strict=True))
+    params = set(table["param"].astype(str)) | set(failed)
+    dropped: dict[int, list[str]] = {}
+    for k, key in enumerate(_key(metrics)):
+        param, pair = str(metrics["param"].iat[k]), str(metrics["pair"].iat[k])
+        if param not in params or not probed_pair(pair):
+            continue
+        limit = float(metrics["tolerance"].iat[k])
+        if param in failed:
+            dropped[k] = [f"{NOTE} failed ({failed[param]})"]
+        elif (found := sens.get(key)) is None:
+            dropped[k] = [f"{NOTE}: not measured (the probing solver does not give this "
+                          "quantity)"]
+        elif math.isfinite(limit) and not float(found.sensitivity) <= FRACTION * limit:
+            dropped[k] = [note(float(found.sensitivity), limit, float(found.width),
+                               float(found.spread))]
+    return Flags(dropped=dropped)
+
+
+
+def note(sensitivity: float, limit: float, width: float, spread: float) -> str:
+    """Why the probe does not gate a row: the measured sensitivity, and the element width
+    that would bring it under the limit at first order."""
+    need = width * FRACTION * limit / sensitivity if sensitivity > 0 else math.nan
+    return (f"{NOTE}: the half-space solver with its wear spread over "
+            f"{spread:.3g} mm ({SPREAD:g} of the {width:.3g} mm element) moves it by "
+            f"{sensitivity:.3g}, more than {FRACTION:g} of the tolerance {limit:.3g}; "
+            f"an element of about {need:.2g} mm would resolve it, were the sensitivity to "
+            "fall in proportion")
+
+
+def admitted(metrics: pd.DataFrame, table: pd.DataFrame) -> pd.DataFrame:
+    """``table`` with the row's ``tolerance`` and whether the probe admits it
+    (``admitted``), for the report's table."""
+    if table.empty:
+        return table.assign(tolerance=[], admitted=[])
+    limits = dict(zip(_key(metrics), metrics["tolerance"].astype(float), strict=False))
+    tolerance = np.array([limits.get(k, math.nan) for k in _key(table)])
+    ok = np.isfinite(tolerance) & (table["sensitivity"].to_numpy(float)
+                                   <= FRACTION * tolerance)
+    return table.assign(tolerance=tolerance, admitted=ok)
