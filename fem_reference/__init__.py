@@ -17,8 +17,6 @@ Public API:
   :mod:`fem_reference.loading`, the fields in :mod:`fem_reference.output`);
 - :func:`write_vtu` ``(path, mesh)`` writes one of the ``RunResult.meta["vtu"]``
   ``(step, meshio.Mesh)`` meshes for ParaView; :func:`read_vtu` reads it back;
-- :func:`by_default` ``(case) -> str | None``: why a run that names no solvers leaves
-  the FEM out on this case (fretting), None when it includes it;
 - :func:`estimate` ``(case) -> cases.result.Cost``: peak memory and wall time of a run,
   before any meshing (:mod:`fem_reference.cost`);
 - :class:`FemUnsupported` (a ``CaseError``: the case needs a feature the model does not
@@ -55,6 +53,10 @@ def supports(case: Case) -> str | None:
         return f"kind {case.kind!r} is not implemented by the FEM reference"
     if case.fem.order != 2:
         return f"fem.order = {case.fem.order}: the FEM reference implements P2 only"
+    if case.solver.wear_spread > 0 and case.kind in ("sliding_wear", "fretting"):
+        return (f"solver.wear_spread = {case.solver.wear_spread:g} mm is the half-space "
+                "solver's resolution probe (its wear increments spread over a length); "
+                "the FEM's wear is its own nodes'")
     if case.fretting is not None and case.fretting.transverse == "free":
         from .model.shape import choose_shape
 
@@ -63,21 +65,6 @@ def supports(case: Case) -> str | None:
                     "motion: the FEM's mixed control (Qy = 0) does not converge in gross "
                     "slip (docs/fem-notes.md, part 5); along the axes it is the held "
                     "reading, which the FEM runs")
-    return None
-
-
-def by_default(case: Case) -> str | None:
-    """None when a run without ``--solver`` should include the FEM on ``case``, else why
-    it runs only on request: fretting, whose worn partial-slip stick zone the FEM and the
-    half-space solver do not agree on, and whose article-size sweeps take hours
-    (docs/fem-notes.md, part 5)."""
-    if case.kind == "fretting":
-        return ("fretting runs through the FEM only on request (--solver ic,fem,analytic): "
-                "in the worn stick zone of partial slip it does not agree with the "
-                "half-space solver at affordable meshes (it resolves the step of the worn "
-                "profile at the stick edge only across an element, and its wear and loop "
-                "energy converge slowly as the elements shrink), and the article-size "
-                "sweeps take hours (docs/fem-notes.md, part 5)")
     return None
 
 
@@ -90,7 +77,7 @@ def estimate(case: Case) -> Cost:
 
 
 __all__ = [
-    "supports", "by_default", "estimate",
+    "supports", "estimate",
     "solve", "write_vtu", "read_vtu", "FemError", "FemUnsupported", "MeshError",
     "ContactNotConverged",
 ]

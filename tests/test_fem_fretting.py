@@ -118,19 +118,28 @@ def test_mesh_reach_and_model_of_a_fretting_case():
     assert choose_shape(worn.with_changes(load=replace(worn.load, slide_angle=30.0))) == "full"
 
 
-def test_fretting_runs_through_the_fem_on_request_only():
-    """A run that names no solvers leaves the FEM out of fretting cases and says why; a
-    run that names it includes it (static cases include it either way)."""
+def test_fretting_runs_through_the_fem_by_default_with_its_probe():
+    """A run that names no solvers runs the FEM on fretting cases as on static ones
+    (issue 51), and plans one resolution probe per worn point: the half-space solver with
+    its wear spread over half the FEM's surface element (reports.studies.probe)."""
     from reports.run.plan import plan_case
+    from reports.studies.probe import SPREAD
 
     every = ["ic", "fem", "analytic"]
-    plan = plan_case("fretting_isotropic", every, quick=True, explicit=False)
-    assert "fem" not in {s for _, s in plan.units()}
-    assert "--solver" in plan.skipped["fem"]
-    asked = plan_case("fretting_isotropic", every, quick=True, explicit=True)
-    assert "fem" in {s for _, s in asked.units()}
-    static = plan_case("hertz", every, quick=True, explicit=False)
-    assert "fem" in {s for _, s in static.units()}
+    for name in ("fretting_isotropic", "fretting_orthotropic", "hertz"):
+        plan = plan_case(name, every, quick=True, explicit=False)
+        assert "fem" in {s for _, s in plan.units()}, name
+        assert "fem" not in plan.skipped, name
+    plan = plan_case("fretting_orthotropic", every, quick=True, explicit=False)
+    assert [g.point for g in plan.probes] == list(range(len(plan.points)))
+    for g in plan.probes:
+        case = plan.points[g.point]
+        element = case.fem.h_contact * case.hertz_scales[0]
+        assert g.solver == "ic" and g.width == pytest.approx(element, rel=1e-12)
+        assert g.case.solver.wear_spread == pytest.approx(SPREAD * element, rel=1e-12)
+        assert g.case.with_changes(solver=case.solver) == case  # nothing else changes
+    assert plan_case("hertz", every, quick=True).probes == []  # no wear, no step
+    assert plan_case("fretting_orthotropic", ["ic", "analytic"], quick=True).probes == []
 
 
 def test_regime_events_are_recorded_once_with_their_cycle():

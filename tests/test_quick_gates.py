@@ -1,21 +1,21 @@
 r"""The CI accuracy gates (issue 5, item 6) and the regression baselines.
 
-Every bundled case runs in its quick variant through the half-space solver and the
-analytic references, and hertz, cattaneo_mindlin, sliding_friction, pin_on_disk,
-pin_on_disk_orthotropic, dissimilar and spence also through the FEM reference, exactly as
-``contact-vv run`` does it; every tolerance of ``metrics.csv`` must hold (``contact-vv
-gate`` exits 0), the report must show every case, and the key numbers must not drift
-from ``tests/baselines/*.csv``
-(relative drift 1e-6: the runs are deterministic, tests/test_determinism.py).  Update
-the baselines explicitly with
+Every bundled case runs in its quick variant through the default solvers — the
+half-space solver and its relations, the FEM reference, the closed forms — exactly as
+the README's ``contact-vv run --all --quick`` does it, the fretting cases with the
+resolution probe of their worn points (reports/studies/probe.py); every tolerance of
+``metrics.csv`` must hold (``contact-vv gate`` exits 0), the report must show every case,
+and the key numbers must not drift from ``tests/baselines/*.csv`` (relative drift 1e-6:
+the runs are deterministic, tests/test_determinism.py).  Update the baselines explicitly
+with
 
-    contact-vv run --all --quick --solver ic,analytic --out results
-    contact-vv run hertz cattaneo_mindlin sliding_friction pin_on_disk \
-        pin_on_disk_orthotropic dissimilar spence --quick --out results
+    contact-vv run --all --quick --out results
     contact-vv gate --out results --update-baseline tests/baselines
 
-The FEM runs fretting only on request (tests/test_fem_fretting.py checks its first cycle,
-tests/test_fem_fretting_worn.py the worn orthotropic contact in gross slip).
+The worn orthotropic fretting contact is read here too: in gross slip (β = 0 on the half
+block, β = 60° on the full one) every output cycle gates ic-fem rows of every worn-contact
+quantity; in partial slip (β = 90°) the probe admits the rows the FEM's surface resolves
+(issue 51).
 """
 
 from __future__ import annotations
@@ -24,27 +24,21 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from test_fem_fretting_worn import OUTPUT_CYCLES, POINTS, SIMULATED, WORN
 
 from cases.loader import BUNDLED, load_case
 from reports.cli import main
 from reports.store import layout
 
 BASELINES = Path(__file__).resolve().parent / "baselines"
-WITH_FEM = ("hertz", "cattaneo_mindlin", "sliding_friction", "pin_on_disk",
-            "pin_on_disk_orthotropic", "dissimilar", "spence")
-#: fretting runs through the FEM on request (fem_reference.by_default): the first cycles
-#: of both regimes, against Mindlin–Deresiewicz and the half-space solver
-FEM_ON_REQUEST = ("fretting_isotropic",)
+#: the FEM runs every bundled case by default
+WITH_FEM = tuple(BUNDLED)
 
 
 @pytest.fixture(scope="module")
 def quick(tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("quick") / "results"
-    assert main(["run", "--all", "--quick", "--solver", "ic,analytic", "--no-progress",
-                 "--out", str(out)]) == 0
-    assert main(["run", *WITH_FEM, "--quick", "--no-progress", "--out", str(out)]) == 0
-    assert main(["run", *FEM_ON_REQUEST, "--quick", "--solver", "ic,fem,analytic",
-                 "--no-progress", "--out", str(out)]) == 0
+    assert main(["run", "--all", "--quick", "--no-progress", "--out", str(out)]) == 0
     return out
 
 
@@ -55,7 +49,7 @@ def test_every_case_ran(quick):
         summary = pd.read_csv(quick / name / layout.SUMMARY)
         solvers = set(summary["solver"])
         assert "ic" in solvers, name
-        if name in WITH_FEM + FEM_ON_REQUEST:
+        if name in WITH_FEM:
             assert "fem" in solvers, name
             assert "ic-fem" in set(pd.read_csv(quick / name / layout.METRICS)["pair"])
 
@@ -133,3 +127,73 @@ def test_the_declarations_the_worn_pins_had_change_no_verdict(quick, name):
         else:
             assert got[("vm_max", "rel")] == "gated"
     assert surface >= 3  # the worn frictional steps, at least
+
+
+# ------------------------------------------------ the worn orthotropic fretting contact
+
+
+def _fretting(out: Path):
+    from reports.store.results import scan
+
+    return next(c for c in scan(out).complete if c.name == "fretting_orthotropic")
+
+
+@pytest.mark.parametrize("point", POINTS)
+def test_every_output_cycle_gates_the_worn_contact(quick, point):
+    """Gross slip: every output cycle carries gated ic-fem rows of every worn-contact
+    quantity, at the default tolerances, and they pass (the probe admits them: without a
+    stick edge the worn profile has no step)."""
+    m = _fretting(quick).metrics
+    m = m[(m["pair"] == "ic-fem") & (m["param"] == point)]
+    assert sorted(m["cycle"].unique()) == OUTPUT_CYCLES
+    for cycle, rows in m.groupby("cycle"):
+        gated = rows[rows["status"] == "gated"]
+        assert set(WORN) <= set(gated["quantity"]), (cycle, set(WORN) - set(gated["quantity"]))
+        assert gated["tolerance_key"].str.startswith("default").all()
+        assert gated["passed"].all()
+
+
+@pytest.mark.parametrize("point", POINTS)
+def test_the_point_wears_in_gross_slip_in_both_solvers(quick, point):
+    """What the gate covers: every simulated cycle in gross slip, in both solvers (the
+    cycles table each writes), the worn depth growing from the first simulated cycle on,
+    and — between the output cycles too — the two solvers' depths within the tolerance
+    their output cycles' w_max is gated with."""
+    import numpy as np
+
+    found = _fretting(quick)
+    depth = {}
+    for solver in ("ic", "fem"):
+        cycles = found.tables(solver, point)["cycles"]
+        assert len(cycles) == SIMULATED, solver
+        assert (cycles["gross_slip"] == 1.0).all(), solver
+        assert (np.diff(cycles["w_max"], prepend=0.0) > 0).all(), solver
+        depth[solver] = cycles["w_max"].to_numpy()
+    m = found.metrics
+    (limit,) = set(m[(m["pair"] == "ic-fem") & (m["quantity"] == "w_max")
+                     & (m["param"] == point)]["tolerance"])
+    assert depth["fem"] == pytest.approx(depth["ic"], rel=limit)
+
+
+def test_the_probe_admits_the_global_loads_and_the_early_wear_in_partial_slip(quick):
+    """β = 90°, partial slip, 2000 cycles (issue 51): the probe's table is in the report;
+    it admits P, the tangential load at the loop's extremes and the wear at 1000 cycles
+    (w_max, the worn volume), and every ic-fem row it admits passes at the default
+    tolerances; the rows it does not admit carry the measured sensitivity."""
+    found = _fretting(quick)
+    m = found.metrics
+    m = m[(m["pair"] == "ic-fem") & (m["param"] == "beta=90")]
+    gated = m[m["status"] == "gated"]
+    assert gated["passed"].all(), gated[~gated["passed"]]
+    assert gated["tolerance_key"].str.startswith("default").all()
+    at_1000 = set(gated[gated["cycle"] == 1000.0]["quantity"])
+    assert {"P", "q_ends", "w_max", "wear_volume"} <= at_1000
+    probed = found.probe
+    assert set(probed["param"]) == {"beta=0", "beta=90", "beta=60"}
+    shown = m[m["note"].str.contains("resolution probe: ", na=False)]
+    assert len(shown) > 0 and (shown["status"] == "not converged").all()
+    html = (quick / "index.html").read_text() if (quick / "index.html").exists() else ""
+    if not html:
+        assert main(["report", "--out", str(quick)]) == 0
+        html = (quick / "index.html").read_text()
+    assert 'id="probe-fretting_orthotropic"' in html
