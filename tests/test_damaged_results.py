@@ -226,7 +226,7 @@ def test_marked_passed_metric_reports_the_contradiction(res, capsys):
     assert code == 1
     assert_error(err, "INCONSISTENT hertz step 0 ic-analytic p_max rel: ")
     assert_error(err, "records passed = True, but value nan against tolerance 0.01 fails")
-    assert "11/12 metric(s) passed" in out
+    assert "12/13 metric(s) passed" in out
 
 
 def test_undamaged_results_pass(res, capsys):
@@ -236,7 +236,7 @@ def test_undamaged_results_pass(res, capsys):
     assert "report:" in out and "Sweep on Dask" in (res / "index.html").read_text()
     code, out, err = call(capsys, "gate", "--out", str(res))
     assert (code, err) == (0, ""), err
-    assert "12/12 metric(s) passed, 2 not gated (not converged), 0 problem(s)" in out
+    assert "13/13 metric(s) passed, 2 not gated (not converged), 0 problem(s)" in out
 
 
 def test_the_other_cases_are_still_reported(res, capsys):
@@ -260,7 +260,7 @@ def test_the_other_cases_are_still_reported(res, capsys):
     assert "metrics.csv: empty file (0 bytes)" in page
     code, out, err = call(capsys, "gate", "--out", str(res))
     assert code == 1
-    assert ("gate: 1 case(s), 12/12 metric(s) passed, 2 not gated (not converged), "
+    assert ("gate: 1 case(s), 13/13 metric(s) passed, 2 not gated (not converged), "
             "2 problem(s)") in out
     assert_error(err, "DAMAGED hertz: ")
 

@@ -197,3 +197,26 @@ def test_the_probe_admits_the_global_loads_and_the_early_wear_in_partial_slip(qu
         assert main(["report", "--out", str(quick)]) == 0
         html = (quick / "index.html").read_text()
     assert 'id="probe-fretting_orthotropic"' in html
+
+
+def test_claim_12_says_what_the_probe_shows(quick):
+    """Claim 12's measured text carries the probe's verdicts on its quantities (issue 51):
+    at the last output (2000 cycles) the maximum at the step is not a number the FEM's
+    mesh gives; at 1000 cycles P and the worn volume are admitted."""
+    import re
+
+    from reports.studies.claims.fretting import resolution_evidence
+
+    found = _fretting(quick)
+
+    class Article:  # the claims' view of the results: the case of a source
+        def case(self, src: str):
+            return found
+
+    m = found.metrics[found.metrics["param"] == "beta=90"]
+    step = {c: int(s) for c, s in zip(m["cycle"], m["step"], strict=True)}
+    last = resolution_evidence(Article(), "fretting", "beta=90", step[2000.0])
+    assert re.search(r"p_max [\d.]+ % \(not a number the mesh gives\)", last), last
+    early = resolution_evidence(Article(), "fretting", "beta=90", step[1000.0])
+    assert re.search(r"; resolution probe .*: P [\d.]+ % \(admitted\)", early), early
+    assert re.search(r"wear_volume [\d.]+ % \(admitted\)", early), early
