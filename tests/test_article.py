@@ -293,3 +293,21 @@ def test_thresholds_of_the_other_tier_are_not_read(quick):
     out, _ = quick
     assert len(collect(out, True, ALL).thresholds) > 0
     assert collect(out, False, ALL).thresholds.empty
+
+
+def test_the_fretting_sources_run_the_fem_on_request(tmp_path):
+    """``article`` without ``--solver`` runs the FEM on the static and pin sources but not
+    on the four fretting sweeps (an hour more at quick size, grid studies included);
+    named, it runs there too (issue 51)."""
+    from reports.run import article_sources
+    from reports.run.plan import Limits
+
+    claims = tuple(c.number for c in CLAIMS)
+    every = ["ic", "fem", "analytic"]
+    default = article_sources.plan(tmp_path, True, every, Limits(), claims, explicit=False)
+    named = article_sources.plan(tmp_path, True, every, Limits(), claims, explicit=True)
+    for work, fretting_fem in ((default, False), (named, True)):
+        for p in work.plans:
+            fretting = p.points[0].kind == "fretting"
+            assert ("fem" in p.solvers) == (fretting_fem or not fretting), p.name
+    assert named.seconds > default.seconds
