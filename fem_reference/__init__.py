@@ -3,7 +3,7 @@ blocks, condensed onto the contact surface, and a semi-smooth Newton contact sol
 
 Shares nothing with ``halfspace`` but the case model and the result container.
 
-Rooms, in their order of dependence (``tests/test_architecture.py``): :mod:`.contact`
+Rooms, in their order of dependence (``tests/test_suite_architecture.py``): :mod:`.contact`
 (laws and solves on the condensed surface) < :mod:`.model` (mesh, elasticity, block,
 surface, shape) < :mod:`.fields` (sampling, contact zone, stresses, planes, VTU); on top
 the run (:mod:`.run`), its load paths (:mod:`.loading`, :mod:`.fretting`), the common

@@ -1,6 +1,6 @@
 """Surface influence coefficients of two elastic half-spaces (Eq. 3-6, 26, 41-42).
 
-Conventions (settled by the physics and by quadrature, see tests/test_influence.py):
+Conventions (settled by the physics and by quadrature, see tests/test_halfspace_influence.py):
 
 - All kernels are functions of the offset ``(xo, yo) = field - load`` (erratum 9).
 - ``p = (p_x, p_y, p_z)`` is the traction acting on body a (the upper body, global z

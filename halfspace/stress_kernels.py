@@ -1,6 +1,6 @@
 """Subsurface stress kernels: point loads (Appendix A) and uniform cell tractions (Appendix C).
 
-Conventions (erratum 9, settled by the tests in tests/test_stress_kernels.py):
+Conventions (erratum 9, settled by the tests in tests/test_halfspace_stress_kernels.py):
 
 - One elastic half-space occupies ``z > 0``; z is the depth into it, x and y are
   surface axes; ``(x, y)`` is always the field point relative to the load point

@@ -32,7 +32,7 @@ MANDEL = (("sxx", 1.0), ("syy", 1.0), ("szz", 1.0), ("sxy", 2**-0.5), ("sxz", 2*
 #: body -> the sign of the tangential traction its surface carries (body a carries
 #: (p_x, p_y), body b the opposite); Tamaas's stresses are then the reported body's own.
 #: Order, Mandel factor and signs checked against Hamilton's sliding sphere on both
-#: bodies at slide angles 0 and 60° (tests/test_tamaas_plugin.py)
+#: bodies at slide angles 0 and 60° (tests/test_tamaas_adapter.py)
 FRAME = {"a": 1.0, "b": -1.0}
 
 

@@ -1,4 +1,4 @@
-"""Ways to damage a results directory, for tests/test_damaged_results.py: each edits
+"""Ways to damage a results directory, for tests/test_reports_damaged_results.py: each edits
 one file of a copied case as a disk fault, a hand edit or a hostile user would."""
 
 from __future__ import annotations

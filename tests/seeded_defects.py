@@ -1,5 +1,5 @@
 """Seeded defects: one-line changes a careful developer could make, and the gate that
-must catch each (``tests/test_seeded_defects.py``; the list and the catch rate are in
+must catch each (``tests/test_suite_seeded_defects.py``; the list and the catch rate are in
 ``benchmarks/README.md``, "Escapes").
 
 Each defect replaces ``old`` by ``new`` in ``path`` (every occurrence; ``count`` says how
@@ -7,7 +7,7 @@ many there are) in a scratch copy of the packages.  ``cases`` are the bundled ca
 quick gate (``--solver ic,analytic``, or with the FEM where ``fem``) must then fail — at
 the one sweep point ``sweep`` (``contact-vv sweep CASE --param SWEEP``) where it is set;
 ``selftest`` defects live in the comparisons themselves, where the gate on a correct
-solver cannot fail, and the gate's self-test (``tests/test_gate_selftest.py``) must fail
+solver cannot fail, and the gate's self-test (``tests/test_reports_gate_selftest.py``) must fail
 instead.
 """
 

@@ -1,7 +1,7 @@
 """The first fretting cycle (analytic/fretting.py): Mindlin–Deresiewicz loop, energy per
 cycle, slip field and wear, each checked a second way (loop area, Cerruti quadrature,
 the path sum of the slip, the worn volume against the dissipation).  The half-space
-solver against it: tests/test_fretting_ic.py."""
+solver against it: tests/test_halfspace_fretting.py."""
 
 
 from __future__ import annotations

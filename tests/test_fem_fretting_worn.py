@@ -1,5 +1,5 @@
 """The worn orthotropic fretting contact through both solvers: generated cases (the full
-tier; the bundled quick points are read in tests/test_quick_gates.py).
+tier; the bundled quick points are read in tests/test_suite_quick_gates.py).
 
 Without this module the worn fretting contact is checked in CI by one solver only: the
 quick gates run ``fretting_orthotropic`` through the half-space solver and its
@@ -26,7 +26,7 @@ energy — at the default tolerances, and every gated row passes (``contact-vv g
 0; the σ_VM maximum over the contact's edge band is shown, not gated, as everywhere).
 Partial slip (β = 90°): there the two solvers part in the worn stick zone
 (docs/fem-notes.md, part 5), and the resolution probe decides which rows the FEM's surface
-resolves (tests/test_quick_gates.py; the generated cases of
+resolves (tests/test_suite_quick_gates.py; the generated cases of
 :func:`test_generated_worn_partial_slip_cases_keep_the_probes_promise`).
 """
 

@@ -2,7 +2,7 @@
 
 References (independent of the code under test): Hertz, a0 = (3PR/4E*)^(1/3),
 p0 = 3P/(2π a0²), δ0 = a0²/R (``Case.hertz_scales``, ``analytic.hertz.hertz``: both
-checked against these formulas in test_case_scales.py, test_analytic_hertz.py); on the
+checked against these formulas in test_cases_scales.py, test_analytic_hertz.py); on the
 axis (Johnson 1985, eq. 3.45)
 σ_z = −p0 (1 + z²/a²)⁻¹, σ_r = σ_θ = p0 [−(1 + ν)(1 − (z/a) arctan(a/z)) + ½ (1 + z²/a²)⁻¹],
 σ_VM = |σ_r − σ_z| (max 0.620 p0 at z = 0.481 a for ν = 0.3).

@@ -11,7 +11,7 @@ contact radius and area, the pressure, the stresses — so a solver cannot hide 
 by narrowing a zone (docs/formulation.md §2.7).
 
 Floors, measured with the half-space solver against the closed forms on generated cases
-(``tests/test_false_alarms.py``; ``benchmarks/README.md``, "False alarms"):
+(``tests/test_suite_false_alarms.py``; ``benchmarks/README.md``, "False alarms"):
 
 - the pressure's L2 norm (``p_n_l2``): a contact radius of 4 cells (its error sits in the edge
   cells, the partly covered ones, and depends on where the edge falls in them: Hertz

@@ -76,7 +76,7 @@ solver's ``energy`` being the trapezoidal rule ∮ Q dδ on its own ``steps_per_
 steps, the analytic's too, so that the time rule — -1.0 | -0.86 % at 20 steps, -6.3 |
 -5.6 % at 8, partial | gross slip — is not charged to the solver), measured with the
 half-space solver against Mindlin–Deresiewicz on the bundled ``fretting_isotropic``
-(tests/test_fretting_ic.py; approach 0.008 mm, μ = 0.3, 0.5 | 1.5 δ*):
+(tests/test_halfspace_fretting.py; approach 0.008 mm, μ = 0.3, 0.5 | 1.5 δ*):
 
 - grid solvers: loop 0.25 % of μP — the grid error alone (ν = 0, where
   Mindlin–Deresiewicz is exact) is 0.19 | 0.11 % at 31² and 0.021 | 0.019 % at 61²;

@@ -243,7 +243,7 @@ def unresolved_references() -> list[str]:
 def test_every_formulation_reference_resolves():
     problems = unresolved_references()
     assert not problems, (
-        f"{len(problems)} reference(s) without a target in docs/ (see tests/test_docs.py "
+        f"{len(problems)} reference(s) without a target in docs/ (see tests/test_suite_docs.py "
         "for the rules):\n" + "\n".join(problems))
 
 

@@ -27,7 +27,7 @@ Some injections necessarily move another row too (a σ_VM plane scaled moves its
 maximum, whose tolerance is tighter than the plane's): ``ALSO`` lists them with the
 reason; only those may fail beside the injected row.  The location of the σ_VM maximum is
 injected where it is a one-parameter change, in a solver's scalars (:func:`move_maximum`);
-its defects on the planes are in ``tests/test_gate_selftest.py`` (the maximum moved by a
+its defects on the planes are in ``tests/test_reports_gate_selftest.py`` (the maximum moved by a
 contact radius, by four cells).
 """
 
@@ -41,7 +41,7 @@ from collections.abc import Callable
 import numpy as np
 import pandas as pd
 import pytest
-from test_gate_selftest import (
+from test_reports_gate_selftest import (
     FRETTING_CASE,
     FRETTING_TEXT,
     SLIDING_CASE,
@@ -149,7 +149,7 @@ def move_maximum(metric: str) -> Inject:
     ``vm_max_z``) without σ_VM planes writes it: the pair has no common planes, so the
     location is compared from the scalars (tolerances module doc).  The location on the
     planes, judged by the near-maximum set, has no one-parameter injection (moving a
-    maximum moves its set); its defects are in ``tests/test_gate_selftest.py``."""
+    maximum moves its set); its defects are in ``tests/test_reports_gate_selftest.py``."""
     def apply(case: Case, result: RunResult, eps: float, pair: str) -> None:
         st = _last(result)
         st.planes = {}

@@ -10,7 +10,7 @@ half-space z > 0 (z into the body) under a unit surface force at the origin
   x²/(rho(rho+z)²))) / 4pi``, ``u_y = (xy/rho³ - (1-2nu) xy/(rho(rho+z)²)) / 4pi``,
   ``u_z = (xz/rho³ + (1-2nu) x/(rho(rho+z))) / 4pi``.
 
-At z = 0 these reduce to the surface formulas tested in test_influence.py.  Their
+At z = 0 these reduce to the surface formulas tested in test_halfspace_influence.py.  Their
 stresses (Hooke's law on finite-difference strains) are the point-kernel reference;
 equilibrium, traction-free surface and force resultants are checked independently.
 """

@@ -7,7 +7,7 @@ field scaled, shifted or perturbed in a band, a zone grown, a scalar or a table 
 and ``compare_point`` must fail the rows that measure that defect.  A metric that leaves
 part of a field out, normalises by the wrong norm or looks at the wrong points fails
 here (the seeded-defect test applies such defects to the reports code, and this test is
-what catches them, ``tests/test_seeded_defects.py``).
+what catches them, ``tests/test_suite_seeded_defects.py``).
 """
 
 from __future__ import annotations

@@ -2,7 +2,7 @@
 one-line ``contact-vv: error: …`` naming the key, file or cause and the documented exit
 status (2 user error, 1 solver or result problem), or a correct result — never a
 traceback, never a hang, never an allocation past the limit, and nothing outside the
-case's own directories touched.  Damaged result directories: tests/test_damaged_results.py.
+case's own directories touched.  Damaged result directories: tests/test_reports_damaged_results.py.
 """
 
 from __future__ import annotations

@@ -41,7 +41,7 @@ def test_the_turn_keeps_the_invariants():
     """Turned by 30° with the load, the sliding contact keeps its invariants to within the
     grid's uncertainty (the grid does not turn); the load vectors turn back.  (That the
     turn sees friction axes turned the wrong way, through the wear of a pin, is a seeded
-    defect of tests/test_seeded_defects.py.)"""
+    defect of tests/test_suite_seeded_defects.py.)"""
     case = _case(41)
     turned = symmetry.turned(case)
     assert (turned.load.slide_angle, turned.friction.beta) == pytest.approx((50.0, 65.0))

@@ -14,7 +14,7 @@ import tempfile
 from pathlib import Path
 
 import pytest
-from test_hostile_inputs import TINY, _answer
+from test_cli_hostile_inputs import TINY, _answer
 
 from reports.store import layout
 

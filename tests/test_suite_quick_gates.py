@@ -6,7 +6,7 @@ the README's ``contact-vv run --all --quick`` does it, the fretting cases with t
 resolution probe of their worn points (reports/studies/probe.py); every tolerance of
 ``metrics.csv`` must hold (``contact-vv gate`` exits 0), the report must show every case,
 and the key numbers must not drift from ``tests/baselines/*.csv`` (relative drift 1e-6:
-the runs are deterministic, tests/test_determinism.py).  Update the baselines explicitly
+the runs are deterministic, tests/test_suite_determinism.py).  Update the baselines explicitly
 with
 
     contact-vv run --all --quick --out results

@@ -2,7 +2,7 @@
 in (issue 31): a key a case of that kind does not use, a sweep of the run's own tables, a
 flag that would do nothing, a Hertz scale or cycle count outside the floats, a cycle
 count the jump grid would mislabel.  Each refusal is one ``contact-vv: error:`` line
-naming the key, exit 2, nothing written (the harness of tests/test_hostile_inputs.py);
+naming the key, exit 2, nothing written (the harness of tests/test_cli_hostile_inputs.py);
 the valid inputs that used to fail now run.
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import pandas as pd
 import pytest
-from test_hostile_inputs import FRET, SWEEP, TINY, WEAR, _answer, _set, hang_guard  # noqa: F401
+from test_cli_hostile_inputs import FRET, SWEEP, TINY, WEAR, _answer, _set, hang_guard  # noqa: F401
 
 from reports.store import layout
 

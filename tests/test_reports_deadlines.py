@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 import test_cli_fakes as fakes
-from test_hostile_inputs import TINY, _answer
+from test_cli_hostile_inputs import TINY, _answer
 
 from cases.loader import load_case
 from reports.registry import solvers

@@ -14,7 +14,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 from damage_kit import edit_csv, rehash
-from test_hostile_inputs import FRET, TINY, _answer
+from test_cli_hostile_inputs import FRET, TINY, _answer
 
 from reports.store import layout
 

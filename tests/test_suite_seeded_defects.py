@@ -49,9 +49,9 @@ def caught(defect: Defect, tmp: Path) -> str:
     """What catches ``defect`` ('' when nothing does)."""
     src = scratch_copy(defect, tmp / "src")
     if defect.selftest:
-        shutil.copy(ROOT / "tests" / "test_gate_selftest.py", src)
+        shutil.copy(ROOT / "tests" / "test_reports_gate_selftest.py", src)
         done = _run(["-m", "pytest", "-q", "-p", "no:cacheprovider", "-x",
-                     "test_gate_selftest.py"], src)
+                     "test_reports_gate_selftest.py"], src)
         failed = [ln for ln in done.stdout.splitlines() if ln.startswith("FAILED")]
         return f"gate self-test: {failed[0]}" if done.returncode and failed else ""
     out = tmp / "results"

@@ -172,3 +172,19 @@ def test_layers_of_fem_reference(name):
                  and t != "fem_reference.errors"
                  and not any(t == a or t.startswith(a + ".") for a in allowed))
     assert bad == [], f"{name} may import only {sorted(allowed)} and fem_reference.errors"
+
+
+#: what a test module's name starts with: the package (room) it holds, or ``suite`` for
+#: the product as a whole (the chain, the gate's error rates, the docs, determinism)
+TEST_ROOMS = ("analytic", "cases", "fem", "halfspace", "reports", "cli", "tamaas",
+              "benchmarks", "suite")
+
+
+def test_every_test_module_names_its_room():
+    """tests/ reads by room (issue 50): ``test_<room>_<what>.py``."""
+    from pathlib import Path
+
+    here = Path(__file__).resolve().parent
+    stray = [p.name for p in here.glob("test_*.py")
+             if p.name.removeprefix("test_").split("_")[0] not in TEST_ROOMS]
+    assert stray == []
