@@ -235,4 +235,5 @@ def progress_bar(progress: bool, total: int, case: Case):
         return _NoBar()
     from tqdm import tqdm
 
-    return tqdm(total=total, desc=f"fem {case.name} {case.param}".strip(), unit="step")
+    return tqdm(total=total, desc=f"fem {case.name} {case.param}".strip(), unit="step",
+                leave=False)

@@ -105,8 +105,8 @@ def sliding_wear(case: Case, progress: bool = False,
             ("s", "P", "Qx", "Qy", "p_max", "w_max", "wear_volume", "contact_area", "a_x")}
     state: ContactState | None = None
     dA = case.grid.dx * case.grid.dy
-    for k in tqdm(range(n_steps + 1), disable=not progress, desc=f"{case.name} {case.param}",
-                  unit="step"):
+    for k in tqdm(range(n_steps + 1), disable=not progress,
+                  desc=f"ic {case.name} {case.param}".strip(), unit="step", leave=False):
         h = h0 + w_a + w_b
         if k == 0:
             # s = 0: the unworn pin already sliding (friction tractions on), no wear yet
@@ -172,7 +172,7 @@ def fretting(case: Case, progress: bool = False,
     steps: list[StepResult] = []
     last_cycle: list[ContactState | None] = [None] * len(path)  # warm starts
     for n in tqdm(range(1, n_sim + 1), disable=not progress,
-                  desc=f"{case.name} {case.param}", unit="cycle"):
+                  desc=f"ic {case.name} {case.param}".strip(), unit="cycle", leave=False):
         seen = CycleObservation(case.grid.dx * case.grid.dy)
         energy, Q_prev, u_prev = 0.0, state_Q(state, case), fr.amplitude
         for k, u in enumerate(path):

@@ -142,12 +142,14 @@ def failure_line(case: str, outcome: UnitOutcome) -> str:
 def serial_executor(plan: CasePlan, units: list[tuple[int, str]],
                     progress: bool) -> Iterator[UnitOutcome]:
     """Run units one after the other in this process; output steps are written into the
-    staging directory as they are computed (``steps_written`` of each outcome)."""
+    staging directory as they are computed (``steps_written`` of each outcome).  With
+    ``progress`` each solver shows its own steps (load steps, sliding increments,
+    cycles) with an ETA, below the case's bar."""
     fns = {s: solvers.resolve(s) for s in {s for _, s in units}}
     for i, s in units:
         case = plan.points[i]
         writer = StepWriter(plan.staging, s, case.param, case) if plan.staging else None
-        outcome = run_unit(fns[s], case, s, i, progress=False, on_output=writer,
+        outcome = run_unit(fns[s], case, s, i, progress=progress, on_output=writer,
                            limit_s=plan.limits.deadline(case, s))
         outcome.steps_written = writer.count if writer is not None else 0
         yield outcome
