@@ -205,18 +205,18 @@ def test_claim_12_says_what_the_probe_shows(quick):
     mesh gives; at 1000 cycles P and the worn volume are admitted."""
     import re
 
-    from reports.studies.claims.fretting import resolution_evidence
+    from reports.studies.claims.finding import study_evidence
+    from reports.studies.claims.fretting import CLAIM_12
 
     found = _fretting(quick)
 
-    class Article:  # the claims' view of the results: the case of a source
-        def case(self, src: str):
-            return found
+    def resolution_evidence(_, src: str, param: str, step: int) -> str:
+        return study_evidence(found, param, step, CLAIM_12)
 
     m = found.metrics[found.metrics["param"] == "beta=90"]
     step = {c: int(s) for c, s in zip(m["cycle"], m["step"], strict=True)}
-    last = resolution_evidence(Article(), "fretting", "beta=90", step[2000.0])
+    last = resolution_evidence(None, "fretting", "beta=90", step[2000.0])
     assert re.search(r"p_max [\d.]+ % \(not a number the mesh gives\)", last), last
-    early = resolution_evidence(Article(), "fretting", "beta=90", step[1000.0])
+    early = resolution_evidence(None, "fretting", "beta=90", step[1000.0])
     assert re.search(r"; resolution probe .*: P [\d.]+ % \(admitted\)", early), early
     assert re.search(r"wear_volume [\d.]+ % \(admitted\)", early), early

@@ -181,3 +181,34 @@ def measure(art: Article, source: str, solver: str, param: str, step: int, quant
                         "its difference from the closed form (no grid study)")
     return Measured(value, abs(value) * budget(solver, quantity),
                     f"{solver}'s error budget (no grid study, no closed form)")
+
+
+def study_evidence(case, param: str, step: int, quantities: tuple[str, ...]) -> str:
+    """What the run's studies of ``case`` (its results) at ``param`` and ``step`` say of
+    ``quantities``: the half-space solver's grid study status of each (``run
+    --convergence``) and, where the FEM ran, the resolution probe's sensitivity against
+    half the ic-fem tolerance (:mod:`reports.studies.probe`); '' without either."""
+    from reports.studies.probe import FRACTION, admitted
+
+    parts = []
+    grid = case.convergence
+    grid = grid[(grid["solver"] == "ic") & (grid["param"] == param) & (grid["step"] == step)]
+    if not grid.empty:
+        status = dict(zip(grid["quantity"], grid["status"], strict=True))
+        parts.append("grid study: " + ", ".join(f"{q} {status[q]}" for q in quantities
+                                                if q in status))
+    table = case.probe
+    table = table[(table["param"] == param) & (table["step"] == step)
+                  & (table["pair"] == "ic-fem")]
+    if not table.empty:
+        rows = admitted(case.metrics, table).set_index("quantity")
+        said = [f"{q} {_moved(rows.at[q, 'sensitivity'], rows.at[q, 'metric'])} "
+                f"({'admitted' if rows.at[q, 'admitted'] else 'not a number the mesh gives'})"
+                for q in quantities if q in rows.index]
+        parts.append(f"resolution probe (the worn step spread over half the FEM's element; "
+                     f"admitted below {FRACTION:g} of the ic-fem tolerance): " + ", ".join(said))
+    return "".join(f"; {p}" for p in parts)
+
+
+def _moved(value: float, metric: str) -> str:
+    return f"{value:.2g} cells" if metric == "cells" else f"{100 * value:.2g} %"

@@ -21,6 +21,7 @@ from reports.studies.claims.finding import (
     Panel,
     fmt,
     measure,
+    study_evidence,
     undecided,
 )
 from reports.studies.claims.sources import SOURCES
@@ -168,7 +169,8 @@ def partial_slip_pressure(art: Article, src: str = SRC) -> Finding:
     of p_n there against Hertz's over the same cells, and the share of the load the stick
     zone carries, output by output. A maximum on the stick edge is the step's peak: it is
     a number only where a grid study shows how it moves.  What the run's studies say of
-    the point is added (:func:`resolution_evidence`): which quantities the grid study
+    the point is added (:func:`reports.studies.claims.finding.study_evidence`): which
+    quantities the grid study
     settles, and which the resolution probe admits — a maximum at the step that grows
     under refinement and that the probe moves is the model's singularity (a step in the
     worn profile, like a flat punch's edge), not a number to compare."""
@@ -233,7 +235,7 @@ def partial_slip_pressure(art: Article, src: str = SRC) -> Finding:
                 f"(Hertz's over the same cells {', '.join(f'{v:.3f}' for v in cv_h)}), share "
                 f"of the load {', '.join(f'{v:.2f}' for v in share)}; p_max/p0 = {ratio:.3f} "
                 f"± {fmt(u, 2)} ({m.basis})" + (", on the stick edge" if on_edge else "")
-                + resolution_evidence(art, src, param, int(last["step"])))
+                + study_evidence(art.case(src), param, int(last["step"]), CLAIM_12))
     if on_edge:
         why += ("; the maximum at the step is the model's singularity (the worn profile "
                 "steps there), not a number to compare between solvers")
@@ -243,38 +245,6 @@ def partial_slip_pressure(art: Article, src: str = SRC) -> Finding:
 
 #: the quantities of claim 12 whose standing the studies are asked about
 CLAIM_12 = ("P", "p_max", "stick_area", "w_max", "wear_volume")
-
-
-def resolution_evidence(art: Article, src: str, param: str, step: int) -> str:
-    """What the run's studies of ``param`` at ``step`` say of :data:`CLAIM_12`: the grid
-    study's status of each (``run --convergence``) and, where the FEM ran, the resolution
-    probe's sensitivity against half the ic-fem tolerance (reports/studies/probe.py);
-    '' without either."""
-    case = art.case(src)
-    parts = []
-    grid = case.convergence
-    grid = grid[(grid["solver"] == "ic") & (grid["param"] == param) & (grid["step"] == step)]
-    if not grid.empty:
-        status = dict(zip(grid["quantity"], grid["status"], strict=True))
-        parts.append("grid study: " + ", ".join(f"{q} {status[q]}" for q in CLAIM_12
-                                                if q in status))
-    table = case.probe
-    table = table[(table["param"] == param) & (table["step"] == step)
-                  & (table["pair"] == "ic-fem")]
-    if not table.empty:
-        from reports.studies.probe import FRACTION, admitted
-
-        rows = admitted(case.metrics, table).set_index("quantity")
-        said = [f"{q} {_moved(rows.at[q, 'sensitivity'], rows.at[q, 'metric'])} "
-                f"({'admitted' if rows.at[q, 'admitted'] else 'not a number the mesh gives'})"
-                for q in CLAIM_12 if q in rows.index]
-        parts.append(f"resolution probe (the worn step spread over half the FEM's element; "
-                     f"admitted below {FRACTION:g} of the ic-fem tolerance): " + ", ".join(said))
-    return "".join(f"; {p}" for p in parts)
-
-
-def _moved(value: float, metric: str) -> str:
-    return f"{value:.2g} cells" if metric == "cells" else f"{100 * value:.2g} %"
 
 
 def _grows(art: Article, src: str, param: str, step: int) -> bool:
