@@ -188,3 +188,25 @@ def test_every_test_module_names_its_room():
     stray = [p.name for p in here.glob("test_*.py")
              if p.name.removeprefix("test_").split("_")[0] not in TEST_ROOMS]
     assert stray == []
+
+
+def test_no_module_over_400_lines_no_function_over_80():
+    """Small modules, short functions (issue 50): the packages' modules hold at most 400
+    lines, their functions at most 80."""
+    import ast
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    long = []
+    for package in ("halfspace", "fem_reference", "analytic", "cases", "reports",
+                    "tamaas_adapter"):
+        for path in sorted((root / package).rglob("*.py")):
+            text = path.read_text()
+            if text.count("\n") > 400:
+                long.append(f"{path.relative_to(root)}: {text.count(chr(10))} lines")
+            long += [f"{path.relative_to(root)}:{node.lineno} {node.name}: "
+                     f"{node.end_lineno - node.lineno + 1} lines"
+                     for node in ast.walk(ast.parse(text))
+                     if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
+                     and node.end_lineno - node.lineno + 1 > 80]
+    assert long == []

@@ -112,19 +112,7 @@ def build_parser() -> argparse.ArgumentParser:
     report = sub.add_parser("report", help="write DIR/index.html from the results in DIR")
     results_dir(report)
 
-    gate = sub.add_parser("gate", help="print the verdict, the failures and a line per "
-                          "case of the results in DIR; exit 1 on any failure")
-    results_dir(gate)
-    gate.add_argument("--verbose", action="store_true",
-                      help="also every metric row, not-gated row and study note")
-    gate.add_argument("--junit", type=Path, metavar="FILE",
-                      help="also write the verdict as JUnit XML (one test case per row)")
-    gate.add_argument("--baseline", type=Path, metavar="DIR",
-                      help="also fail on key numbers drifting from the baselines in DIR")
-    gate.add_argument("--drift", type=float, default=None, metavar="REL",
-                      help="allowed relative drift from the baseline (default 1e-6)")
-    gate.add_argument("--update-baseline", type=Path, metavar="DIR",
-                      help="write the baselines of the current results to DIR (explicit)")
+    _gate_parser(sub, results_dir)
 
     sweep = sub.add_parser("sweep", help="run a parameter sweep on Dask")
     sweep.add_argument("case", metavar="CASE")
@@ -143,6 +131,23 @@ def build_parser() -> argparse.ArgumentParser:
     _threshold_parser(sub, common)
     _article_parser(sub, common)
     return parser
+
+
+def _gate_parser(sub: Any, results_dir: Any) -> None:
+    """``contact-vv gate``: the verdict on the results in DIR."""
+    gate = sub.add_parser("gate", help="print the verdict, the failures and a line per "
+                          "case of the results in DIR; exit 1 on any failure")
+    results_dir(gate)
+    gate.add_argument("--verbose", action="store_true",
+                      help="also every metric row, not-gated row and study note")
+    gate.add_argument("--junit", type=Path, metavar="FILE",
+                      help="also write the verdict as JUnit XML (one test case per row)")
+    gate.add_argument("--baseline", type=Path, metavar="DIR",
+                      help="also fail on key numbers drifting from the baselines in DIR")
+    gate.add_argument("--drift", type=float, default=None, metavar="REL",
+                      help="allowed relative drift from the baseline (default 1e-6)")
+    gate.add_argument("--update-baseline", type=Path, metavar="DIR",
+                      help="write the baselines of the current results to DIR (explicit)")
 
 
 def _article_parser(sub: Any, common: Any) -> None:

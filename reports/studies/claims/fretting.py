@@ -220,16 +220,8 @@ def partial_slip_pressure(art: Article, src: str = SRC) -> Finding:
         why = ("nearly uniform inside the stick zone, but p_max sits on the stick edge, where "
                "the worn profile steps: not a converged number without a grid study showing "
                "it grow" if on_edge else "the ratio is within its uncertainty of 2")
-    j0 = int(np.argmin(np.abs(st.y)))
-    X, Y = np.meshgrid(st.x, st.y, indexing="ij")
-    hertz = p0 * np.sqrt(np.clip(1.0 - (X**2 + Y**2) / a0**2, 0.0, None))
-    panels = (Panel("β = 90°: pressure along x at the last output", "x / a0", "p_n / p0",
-                    {"ic": (st.x / a0, p[:, j0] / p0),
-                     "unworn (Hertz)": (st.x / a0, hertz[:, j0] / p0)}),
-              Panel("inside the stick zone", "N (cycles)", "",
-                    {"CV of p_n": (np.array(cycles), np.array(cv)),
-                     "CV of Hertz's p": (np.array(cycles), np.array(cv_h)),
-                     "load share": (np.array(cycles), np.array(share))}, markers=True))
+    panels = _pressure_panels(st, a0, p0, {"CV of p_n": cv, "CV of Hertz's p": cv_h,
+                                           "load share": share}, cycles)
     measured = (f"ic at cycles {', '.join(f'{c:g}' for c in cycles)}: coefficient of "
                 f"variation of p_n inside the stick zone {', '.join(f'{v:.3f}' for v in cv)} "
                 f"(Hertz's over the same cells {', '.join(f'{v:.3f}' for v in cv_h)}), share "
@@ -241,6 +233,21 @@ def partial_slip_pressure(art: Article, src: str = SRC) -> Finding:
                 "steps there), not a number to compare between solvers")
     return Finding(measured, "p_max ± " + m.basis, verdict, why, panels,
                    {"ratio": ratio, "cv": cv[-1], "cv_hertz": cv_h[-1]})
+
+
+def _pressure_panels(st, a0: float, p0: float, series: dict[str, list[float]],
+                     cycles: list[float]) -> tuple[Panel, Panel]:
+    """Claim 12's panels: the pressure along x at the last output against the unworn
+    contact's, and ``series`` inside the stick zone against the cycles."""
+    j0 = int(np.argmin(np.abs(st.y)))
+    X, Y = np.meshgrid(st.x, st.y, indexing="ij")
+    hertz = p0 * np.sqrt(np.clip(1.0 - (X**2 + Y**2) / a0**2, 0.0, None))
+    return (Panel("β = 90°: pressure along x at the last output", "x / a0", "p_n / p0",
+                  {"ic": (st.x / a0, st.surface["p_n"][:, j0] / p0),
+                   "unworn (Hertz)": (st.x / a0, hertz[:, j0] / p0)}),
+            Panel("inside the stick zone", "N (cycles)", "",
+                  {k: (np.array(cycles), np.array(v)) for k, v in series.items()},
+                  markers=True))
 
 
 #: the quantities of claim 12 whose standing the studies are asked about
