@@ -39,8 +39,8 @@ from reports.studies.events import EventOptions
 THRESHOLD_SOLVERS = ("ic", "analytic")
 #: the solvers the claims' fretting sources leave out unless named: the FEM's four quick
 #: sweeps with their grid studies would add over an hour to ``article --quick``
-#: (estimated 77 of 90 minutes, 2026-11-28), and the claims read the half-space solver;
-#: ``--solver ic,fem,analytic`` adds them, with the resolution probe's evidence (claim 12)
+#: (``benchmarks/README.md``, "The resolution probe"), and the claims read the half-space
+#: solver; ``--solver ic,fem,analytic`` adds them, with the probe's evidence (claim 12)
 FRETTING_ON_REQUEST = ("fem",)
 
 
