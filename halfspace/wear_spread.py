@@ -19,6 +19,8 @@ so a spread below a cell still acts.
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 from scipy.ndimage import convolve1d
 
@@ -32,11 +34,17 @@ def _tent(s: np.ndarray, r: float) -> np.ndarray:
 
 def weights(r: float, dx: float) -> np.ndarray:
     """The cell weights of a tent of half-width ``r`` on cells of side ``dx`` (module doc),
-    offsets −m … m with m = ⌈r/dx⌉; ``[1.0]`` for ``r = 0``."""
+    offsets −m … m with m = ⌈r/dx⌉; ``[1.0]`` for ``r = 0``.  Computed once per (r, dx):
+    a run spreads every committed increment with the same weights."""
+    return np.array(_weights(float(r), float(dx)))
+
+
+@lru_cache(maxsize=16)
+def _weights(r: float, dx: float) -> tuple[float, ...]:
     if r < 0 or dx <= 0:
         raise ValueError(f"wear spread r = {r!r} on cells dx = {dx!r}: need r ≥ 0, dx > 0")
     if r == 0.0:
-        return np.ones(1)
+        return (1.0,)
     m = int(np.ceil(r / dx))
     # the integrand is smooth between the kinks of Λ (t = −dx, 0, dx) and of T_r
     # (k dx + t = −r, 0, r); integrate piece by piece between every kink
@@ -49,7 +57,7 @@ def weights(r: float, dx: float) -> np.ndarray:
         t = 0.5 * (b - a) * t_gauss + 0.5 * (b + a)
         f = (1.0 - np.abs(t) / dx) / dx * _tent(k * dx + t, r)
         out[j] = float(np.sum(0.5 * (b - a) * (f @ np.diag(w_gauss))))
-    return out / out.sum()
+    return tuple(out / out.sum())
 
 
 def spread(dw: np.ndarray, r: float, dx: float, dy: float) -> np.ndarray:

@@ -15,6 +15,7 @@ from reports.compare.metrics import scalar
 from reports.compare.point import common_steps, pair_cell, step_values
 from reports.registry.pairs import pairs
 from reports.run.plan import CasePlan
+from reports.run.study_runs import run_levels
 from reports.run.units import Executor
 from reports.store.study_tables import PROBE_COLUMNS
 from reports.studies import probe
@@ -39,8 +40,6 @@ def run_probes(plan: CasePlan, executor: Executor, progress: bool | None,
                own: dict[tuple[int, str], RunResult]) -> Probed:
     """Run the probes of ``plan`` (fields not written) and compare each with the point's
     own run ``own[(point, solver)]`` by every probed pair's metrics."""
-    from reports.run.study_runs import run_levels
-
     study = run_levels(plan, plan.probes, executor, progress, "probe",
                        lambda g: {"study": "probe", "width": g.width,
                                   "wear_spread": g.case.solver.wear_spread},
