@@ -4,6 +4,7 @@ in its range, every combination consistent, each error naming its key."""
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 
@@ -204,6 +205,22 @@ def _stress(d: dict) -> StressOutput:
     return stress
 
 
+#: the name of an external result set (solver ``external:NAME``)
+NAME_RE = re.compile(r"[a-z][a-z0-9_]*")
+
+
+def _external(d: dict) -> dict[str, dict]:
+    """``[external.NAME]``: a table per name (its keys are checked by the solver that
+    reads them, :mod:`external_results.spec`)."""
+    for key, value in d.items():
+        if not NAME_RE.fullmatch(key):
+            raise CaseError(f"external.{key}: a name is lower-case letters, digits and '_', "
+                            "starting with a letter")
+        if not isinstance(value, dict):
+            raise CaseError(f"external.{key} must be a table")
+    return {k: dict(v) for k, v in d.items()}
+
+
 def build(data: dict, *, name: str, source: str, param: str) -> Case:
     kind = data.get("kind", "static")
     _one_of(kind, KINDS, "kind")
@@ -246,6 +263,7 @@ def build(data: dict, *, name: str, source: str, param: str) -> Case:
         fem=_fem(data.get("fem", {})),
         tolerances=_tolerances(data.get("tolerances", {})),
         not_converged=_not_converged(data.get("not_converged", {})),
+        external=_external(data.get("external", {})),
         description=data.get("description", ""),
         param=param,
         source=source,

@@ -254,6 +254,9 @@ class Case:
     tolerances: dict[str, float] = field(default_factory=dict)
     #: quantity -> why it is not a converged number (compared, shown, not gated)
     not_converged: dict[str, str] = field(default_factory=dict)
+    #: NAME -> the ``[external.NAME]`` table: result files of another code, read by the
+    #: solver ``external:NAME`` (:mod:`external_results.spec` checks it)
+    external: dict[str, dict] = field(default_factory=dict)
     description: str = ""
     param: str = ""  # sweep label such as 'mu=0.25'; '' when not a sweep point
     source: str = ""  # path of the TOML file

@@ -55,6 +55,7 @@ SCHEMA: dict[str, Any] = {
             "h_surface": float, "contact": str},
     "tolerances": dict,
     "not_converged": dict,
+    "external": dict,
     "sweep": {"key": str, "values": [SCALAR], "label": str},
     "quick": dict,
 }

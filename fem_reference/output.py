@@ -50,7 +50,7 @@ from cases.result import OPEN, STICK, Plane, StepResult, vm_max_location
 from .contact.laws import Evaluation
 from .fields.contact_zone import ContactZone, closing_measure, contact_zone
 from .fields.planes import AXIS_FIT_WINDOW, SurfaceStress, axis_peak, stress_planes
-from .fields.vtu import fields_mesh
+from .fields.vtu import add_tractions, fields_mesh
 from .model.fem_model import BodyDisplacement
 from .run import OutputState, Run
 
@@ -99,7 +99,10 @@ def step_output(run: Run, out: OutputState, *, t0: float, vtu: bool = True) -> S
     scalars = step_scalars(run, out, zone, tractions, planes, axis)
     scalars.update(_body_scalars(run, u_body, mat, t0, scalars["P"],
                                  (scalars["Qx"], scalars["Qy"])))
-    mesh = fields_mesh(m.space, u_body.total, mat.nu, mat.E) if vtu else None
+    mesh = None
+    if vtu:
+        mesh = add_tractions(fields_mesh(m.space, u_body.total, mat.nu, mat.E),
+                             m.surface.nodes, ev.pn, ev.t)
     g = case.grid
     result = StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(), surface=surface,
                         planes=planes)

@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-PACKAGES = ("halfspace", "fem_reference", "analytic", "cases", "reports")
-SOLVERS = ("halfspace", "fem_reference", "analytic")
+PACKAGES = ("halfspace", "fem_reference", "analytic", "cases", "reports", "external_results")
+SOLVERS = ("halfspace", "fem_reference", "analytic", "external_results")
 
 #: sub-package of reports -> the sub-packages it may import (besides itself)
 ALLOWED = {
@@ -120,6 +120,15 @@ def test_solver_packages_are_independent():
     assert bad == []
 
 
+def test_external_results_read_files_with_the_cases_package_only():
+    """A reader of another code's files shares nothing with the solvers it is compared
+    with (external_results)."""
+    bad = sorted(f"{n} -> {t}" for n, deps in GRAPH.items() for t in deps
+                 if n.startswith("external_results")
+                 and t.split(".")[0] not in ("external_results", "cases"))
+    assert bad == []
+
+
 def test_no_import_circle():
     """Depth-first search for a back edge over the project's module graph."""
     state: dict[str, int] = {}
@@ -177,7 +186,7 @@ def test_layers_of_fem_reference(name):
 #: what a test module's name starts with: the package (room) it holds, or ``suite`` for
 #: the product as a whole (the chain, the gate's error rates, the docs, determinism)
 TEST_ROOMS = ("analytic", "cases", "fem", "halfspace", "reports", "cli", "tamaas",
-              "benchmarks", "suite")
+              "benchmarks", "suite", "external")
 
 
 def test_every_test_module_names_its_room():

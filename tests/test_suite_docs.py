@@ -50,8 +50,8 @@ FORMULATION = DOCS / "formulation.md"
 CASES_DOC = DOCS / "cases.md"
 THIS = Path(__file__).resolve()
 
-SCAN_DIRS = ("halfspace", "fem_reference", "analytic", "cases", "reports", "tests",
-             "benchmarks", "docs")
+SCAN_DIRS = ("halfspace", "fem_reference", "analytic", "cases", "reports", "external_results",
+             "tests", "benchmarks", "docs")
 SUFFIXES = (".py", ".md", ".toml")
 SKIP_DIRS = {"__pycache__", "baselines"}
 

@@ -5,8 +5,11 @@ The mesh is written with its quadratic tetrahedra (``tetra10``; the P2 node orde
 x and y the global axes, Z = −depth (the body lies below its contact surface Z = 0).
 Point data: ``displacement`` (3 components, mm), the stress components ``sxx, syy,
 szz, sxy, sxz, syz`` in that frame and ``von_mises`` (MPa), volume-averaged at the
-nodes from the exact element stresses.  A quarter or half model holds the modelled
-part only (ParaView's Reflect filter restores the rest).
+nodes from the exact element stresses; ``p_n, p_x, p_y`` (MPa) the nodal tractions of
+the contact solve on body a at the contact surface's nodes (zero at the others), the
+values the output's surface fields interpolate linearly on each facet's
+sub-triangles.  A quarter or half model holds the modelled part only (ParaView's
+Reflect filter restores the rest).
 """
 
 from __future__ import annotations
@@ -38,6 +41,18 @@ def fields_mesh(space: P2Space, u: np.ndarray, nu: float, E: float) -> meshio.Me
         cells=[("tetra10", space.element_nodes.T.astype(np.int64).copy())],
         point_data=point_data,
     )
+
+
+def add_tractions(mesh: meshio.Mesh, nodes: np.ndarray, p_n: np.ndarray,
+                  t: np.ndarray) -> meshio.Mesh:
+    """``mesh`` with the point data ``p_n, p_x, p_y``: the nodal tractions ``p_n`` (k,)
+    and ``t`` (k, 2) at its points ``nodes`` (k,), zero at the others."""
+    n = len(mesh.points)
+    for name, values in (("p_n", p_n), ("p_x", t[:, 0]), ("p_y", t[:, 1])):
+        field = np.zeros(n)
+        field[nodes] = values
+        mesh.point_data[name] = field
+    return mesh
 
 
 def write_vtu(path: str | Path, mesh: meshio.Mesh) -> Path:

@@ -4,6 +4,7 @@ ones), and the defaults of a solver on the case's grid."""
 
 from __future__ import annotations
 
+import functools
 import importlib
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
@@ -70,6 +71,9 @@ class SolverRecord:
     #: the base on the transformed case, wherever the base runs, and pairs with it only
     relation: relations.Relation | None = None
     base: str = ""
+    #: keyword arguments every entry point of the package is called with (an external
+    #: result set's ``name``)
+    options: Mapping[str, Any] = field(default_factory=dict)
 
     def entry(self, attr: str) -> Callable:
         """The callable ``attr`` of the package; SolverUnavailable if it cannot load."""
@@ -82,4 +86,4 @@ class SolverRecord:
         if not callable(fn):
             raise SolverUnavailable(f"solver {self.name!r} is not available: {self.package} "
                                     f"has no entry point {attr}()")
-        return fn
+        return functools.partial(fn, **self.options) if self.options else fn

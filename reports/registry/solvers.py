@@ -99,6 +99,7 @@ from cases.model import Case, CaseError
 from cases.result import Cost, RunResult
 from reports.registry import plugins, relations
 from reports.registry.errors import SolverUnavailable
+from reports.registry.external import EXTERNAL, external_record, is_external
 from reports.registry.record import SolverRecord
 
 SolveFn = Callable[..., RunResult]
@@ -272,6 +273,15 @@ def exact_pair(pair: str) -> bool:
     return rb.base == a and rb.relation is not None and rb.relation.exact
 
 
+def _get(name: str) -> SolverRecord:
+    """The record of a known solver (registered or external); KeyError otherwise."""
+    if name in REGISTRY:
+        return REGISTRY[name]
+    if is_external(name):
+        return external_record(name)
+    raise KeyError(name)
+
+
 def names() -> list[str]:
     """All registered solver names, in registry order."""
     return list(REGISTRY)
@@ -299,14 +309,17 @@ def second_solvers(ran: Iterable[str], declined: Iterable[str]) -> list[str]:
 def record(name: str) -> SolverRecord:
     """The record of solver ``name``; a name not registered (results written by another
     version) gets a grid solver's defaults."""
+    if is_external(name):
+        return external_record(name)
     return REGISTRY.get(name) or SolverRecord(name, package="", budget=grid_budget)
 
 
 def resolve(name: str) -> SolveFn:
     """The ``solve`` entry point of solver ``name``; SolverUnavailable if it cannot load."""
-    if name not in REGISTRY:
-        raise SolverUnavailable(f"unknown solver {name!r} (known: {', '.join(REGISTRY)})")
-    rec = REGISTRY[name]
+    if name not in REGISTRY and not is_external(name):
+        raise SolverUnavailable(f"unknown solver {name!r} (known: {', '.join(REGISTRY)}, "
+                                f"{EXTERNAL}NAME)")
+    rec = _get(name)
     fn = rec.entry(rec.solve_attr)
     return relations.wrap(rec.relation, fn) if rec.relation is not None else fn
 
@@ -315,7 +328,7 @@ def available(name: str) -> tuple[bool, str]:
     """(True, '') if solver ``name`` loads, else (False, reason)."""
     try:
         resolve(name)
-        rec = REGISTRY[name]
+        rec = _get(name)
         rec.entry(rec.supports_attr)
     except SolverUnavailable as exc:
         return False, str(exc)
@@ -324,7 +337,7 @@ def available(name: str) -> tuple[bool, str]:
 
 def estimate(name: str, case: Case) -> Cost | None:
     """The solver's own estimate of what ``case`` will cost it (None if it makes none)."""
-    rec = REGISTRY[name]
+    rec = _get(name)
     try:
         fn = rec.entry(rec.estimate_attr)
     except SolverUnavailable:
@@ -342,7 +355,7 @@ def estimate(name: str, case: Case) -> Cost | None:
 def not_by_default(name: str, case: Case) -> str | None:
     """Why a run that names no solvers leaves solver ``name`` out on ``case`` (its
     optional ``by_default``), None if it runs."""
-    rec = REGISTRY[name]
+    rec = _get(name)
     try:
         fn = rec.entry(rec.default_attr)
     except SolverUnavailable:
@@ -353,7 +366,7 @@ def not_by_default(name: str, case: Case) -> str | None:
 
 def unsupported(name: str, case: Case) -> str | None:
     """Why solver ``name`` does not handle ``case`` (its ``supports``), None if it does."""
-    rec = REGISTRY[name]
+    rec = _get(name)
     if rec.relation is not None:
         if (why := relations.applies(case)) is not None:
             return why

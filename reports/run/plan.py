@@ -191,12 +191,16 @@ def select_solvers(requested: list[str] | None, *, relations: bool = True
         return s in chosen or bool(base) and relations and base in chosen
 
     if requested:
-        unknown = [s for s in requested if s not in known]
+        unknown = [s for s in requested if s not in known and not solvers.is_external(s)]
         if unknown:
-            raise UserError(f"unknown solver(s) {', '.join(unknown)} (known: {', '.join(known)})")
+            raise UserError(f"unknown solver(s) {', '.join(unknown)} (known: {', '.join(known)}"
+                            f", {solvers.EXTERNAL}NAME for the case's [external.NAME] files)")
         for s in requested:
             solvers.resolve(s)  # raises SolverUnavailable with the reason
-        return [s for s in known if wanted(s, requested)], {}
+        # result files of another code come first, like a plugin: the built-in solvers
+        # are their references
+        external = list(dict.fromkeys(s for s in requested if solvers.is_external(s)))
+        return external + [s for s in known if wanted(s, requested)], {}
     usable, skipped = [], {}
     for s in known:
         ok, reason = solvers.available(s)
