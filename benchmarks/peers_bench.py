@@ -75,9 +75,10 @@ PKT_NU = 0.5  # decouples Tamaas's normal and tangential problems, as K = 0 does
 VM_DEPTH, VM_LAYERS = 0.3, 64
 
 SIZES = {"hertz": (512, 1024), "mindlin": (256, 512), "vm": (256,)}
-CODES = {"hertz": ("project", "tamaas-dcfft", "tamaas-periodic"),
+CODES = {"hertz": ("project", "tamaas-dcfft", "tamaas-periodic", "contactmechanics"),
          "mindlin": ("project", "tamaas-pkt"), "vm": ("project",)}
-PEERS = {"tamaas-dcfft": "Tamaas PKR, DC-FFT (non-periodic)",
+PEERS = {"contactmechanics": "ContactMechanics, FreeFFT (non-periodic)",
+         "tamaas-dcfft": "Tamaas PKR, DC-FFT (non-periodic)",
          "tamaas-periodic": "Tamaas PKR, periodic", "tamaas-pkt": "Tamaas PKT, periodic"}
 BEGIN, END = "<!-- peers-bench:begin -->", "<!-- peers-bench:end -->"
 ITER_LINE = re.compile(r"^\s*(\d+)\s+\S+\s+\S+\s*$", re.M)
@@ -205,6 +206,25 @@ def _run_quiet(solve: Callable[[], object]) -> int:
     return _iterations(log.getvalue() + "\n" + text)
 
 
+def contactmechanics_hertz(n: int) -> Row:
+    """ContactMechanics's Polonsky–Keer solve (``NonSmoothContactSystem.minimize_proxy``)
+    on its zero-padded free half-space, to a penetration of TOL times the profile's
+    range (its tolerance is a length)."""
+    from ContactMechanics import FreeFFTElasticHalfSpace
+    from ContactMechanics.Systems import NonSmoothContactSystem
+    from SurfaceTopography import Topography
+
+    heights = -radius2(n) / (2.0 * R)
+    t0 = time.perf_counter()
+    system = NonSmoothContactSystem(
+        substrate=FreeFFTElasticHalfSpace((n, n), e_star(), (L, L)),
+        surface=Topography(heights, (L, L), periodic=False))
+    res = system.minimize_proxy(external_force=P, pentol=TOL * float(np.ptp(heights)))
+    solve_s = time.perf_counter() - t0
+    return {"solve_s": solve_s, "iterations": int(res.nit),
+            "p_n": np.asarray(res.jac, dtype=float) / (L / n) ** 2}
+
+
 def tamaas_hertz(n: int, periodic: bool) -> Row:
     import tamaas as tm
 
@@ -256,6 +276,7 @@ def run_worker(code: str, problem: str, n: int, fields: Path) -> Row:
         ("tamaas-dcfft", "hertz"): lambda k: tamaas_hertz(k, periodic=False),
         ("tamaas-periodic", "hertz"): lambda k: tamaas_hertz(k, periodic=True),
         ("tamaas-pkt", "mindlin"): lambda k: tamaas_mindlin(k, pkt_budget(k)),
+        ("contactmechanics", "hertz"): contactmechanics_hertz,
     }
     if (code, problem) not in runners:
         raise ValueError(f"no {code!r} run of problem {problem!r}")
@@ -311,8 +332,15 @@ def have_tamaas() -> bool:
     return find_spec("tamaas") is not None
 
 
+def installed(code: str) -> bool:
+    """Whether the package of ``code`` is importable (this project's always is)."""
+    if code == "contactmechanics":
+        return find_spec("ContactMechanics") is not None
+    return code == "project" or have_tamaas()
+
+
 def codes_for(problem: str, peers: bool) -> tuple[str, ...]:
-    return tuple(c for c in CODES[problem] if peers or c == "project")
+    return tuple(c for c in CODES[problem] if c == "project" or peers and installed(c))
 
 
 def median_row(runs: list[Row]) -> Row:
@@ -387,7 +415,9 @@ def report(rows: list[Row], peers: bool, repeat: int, load: tuple[float, float])
     if peers:
         import importlib.metadata as md
 
-        version = md.version("tamaas")
+        version = md.version("tamaas") if have_tamaas() else "not installed"
+        if installed("contactmechanics"):
+            version += f", ContactMechanics {md.version('ContactMechanics')}"
     text = (f"Measured {time.strftime('%Y-%m-%d')} on {platform.machine()}, "
             f"{os.cpu_count()} cores, Python {platform.python_version()}, Tamaas {version}; "
             f"OMP_NUM_THREADS=1; median of {repeat} runs, each a fresh process, the codes "
@@ -440,8 +470,8 @@ def main(argv: list[str] | None = None) -> None:
         code, problem, n, fields = args.worker
         print(json.dumps(run_worker(code, problem, int(n), Path(fields))), flush=True)
         return
-    peers = have_tamaas()
-    if not peers:
+    peers = any(installed(c) for c in PEERS)
+    if not have_tamaas():
         print("Tamaas is not importable (pip install -e \".[peers]\"): running this "
               "project's half only.", flush=True)
     load0 = os.getloadavg()[0]

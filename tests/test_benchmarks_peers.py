@@ -87,6 +87,7 @@ def test_tamaas_workers(tmp_path):
 
 def test_main_without_tamaas_runs_the_project_half(tmp_path, monkeypatch, capsys):
     monkeypatch.setattr(pb, "have_tamaas", lambda: False)
+    monkeypatch.setattr(pb, "installed", lambda code: code == "project")  # no peer at all
     out = tmp_path / "README.md"
     pb.main(["--problems", "hertz", "--sizes", str(N), "--repeat", "1", "--out", str(out)])
     said = capsys.readouterr().out

@@ -186,7 +186,7 @@ def test_layers_of_fem_reference(name):
 #: what a test module's name starts with: the package (room) it holds, or ``suite`` for
 #: the product as a whole (the chain, the gate's error rates, the docs, determinism)
 TEST_ROOMS = ("analytic", "cases", "fem", "halfspace", "reports", "cli", "tamaas",
-              "benchmarks", "suite", "external")
+              "benchmarks", "suite", "external", "contactmechanics")
 
 
 def test_every_test_module_names_its_room():
@@ -208,7 +208,7 @@ def test_no_module_over_400_lines_no_function_over_80():
     root = Path(__file__).resolve().parents[1]
     long = []
     for package in ("halfspace", "fem_reference", "analytic", "cases", "reports",
-                    "tamaas_adapter"):
+                    "tamaas_adapter", "external_results", "contactmechanics_adapter"):
         for path in sorted((root / package).rglob("*.py")):
             text = path.read_text()
             if text.count("\n") > 400:
