@@ -26,6 +26,7 @@ from cases.model import CaseError
 from reports.cli import main
 from reports.registry import solvers
 from reports.render.gate import run_gate
+from reports.render.pages import report_text
 from reports.store import study_tables
 from reports.store.readers import read_metrics
 from reports.studies import convergence, gridstudy
@@ -199,7 +200,7 @@ def test_non_convergent_quantities_are_flagged(studied):
     assert flags["analytic"] == ""
     # the report shows the table and flags the rows (class "bad"), not the converged one
     assert main(["report", "--out", str(out)]) == 0
-    text = (out / "index.html").read_text()
+    text = report_text(out)
     sec = text.split('class="convergence"')[1].split("</div>")[0]
     rows = {m.group(2): m.group(1) for m in re.finditer(
         r'<tr( class="bad")?><td class="l">ic</td><td class="l"></td><td class="l">0</td>'

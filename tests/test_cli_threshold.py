@@ -10,6 +10,7 @@ import pytest
 import test_cli_fakes as fakes
 
 from reports.cli import main
+from reports.render.pages import report_text
 from reports.store.readers import read_result, read_thresholds
 
 SLIDING = ["threshold", "sliding_friction", "--param", "friction.mu", "--event",
@@ -46,7 +47,7 @@ def test_sliding_threshold_table_csv_and_report(tmp_path, capsys):
     assert again[again["solver"] == "ic"]["resolution"].tolist() == [0.025, 0.05]
 
     assert main(["report", "--out", str(out)]) == 0
-    html = (out / "index.html").read_text()
+    html = report_text(out)
     assert '<h2 id="thresholds">Thresholds</h2><div class="thresholds">' in html
     assert "Hamilton (1983)" in html
 

@@ -40,6 +40,7 @@ from analytic import fretting as afr
 from cases.loader import case_path, load_case
 from cases.result import SLIP, STICK
 from reports.cli import main
+from reports.render.pages import report_text
 
 J = 500.0
 CASE = "fretting_orthotropic"
@@ -156,7 +157,7 @@ def test_gross_to_partial_at_the_cycle_the_stick_area_appears(results):
 
 
 def test_events_in_the_report(results):
-    page = (results / "index.html").read_text()
+    page = report_text(results)
     assert page.count('class="events"') == 1  # only the case with an event has the table
     section = page[page.index(f'id="events-{NEAR}"'):]
     section = section[:section.index("</table>")]

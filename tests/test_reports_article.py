@@ -4,7 +4,9 @@ verdicts moved by seeded changes of the results, and bad input."""
 
 from __future__ import annotations
 
+import contextlib
 import importlib
+import io
 import shutil
 import subprocess
 
@@ -72,16 +74,21 @@ def quick(tmp_path_factory):
     named first that declines every case (its time: benchmarks/README.md)."""
     tmp = tmp_path_factory.mktemp("article")
     out = tmp / "res"
-    with pytest.MonkeyPatch.context() as mp:
+    said = io.StringIO()
+    with pytest.MonkeyPatch.context() as mp, contextlib.redirect_stdout(said), \
+            contextlib.redirect_stderr(said):
         install_decliner(tmp, mp)
         code = main(["article", "--quick", "--solver", f"{DECLINER},ic,analytic",
                      "--no-progress", "--out", str(out)])
+    (tmp / "said.txt").write_text(said.getvalue())
     return out, code
 
 
 def test_the_claims_table_at_quick_size(quick, capsys):
     out, code = quick
     assert code == 0
+    said = (out.parent / "said.txt").read_text().splitlines()
+    assert len(said) < 40, said  # a line per case, per threshold study, per claim (issue 48)
     table = pd.read_csv(out / layout.ARTICLE_DIR / layout.CLAIMS)
     assert dict(zip(table["claim"], table["verdict"], strict=True)) == QUICK
     assert table["measured"].str.len().min() > 20 and table["why"].notna().all()

@@ -32,6 +32,7 @@ from damage_kit import (
 )
 
 from reports.cli import main
+from reports.render.pages import report_text
 
 ERROR = "contact-vv: error:"
 
@@ -207,12 +208,12 @@ def test_damaged_case(res, capsys, damage, rehashed, report_code, gate_code, nee
     if report_code:
         assert_error(err, needle)
         assert_error(err, "hertz")
-        assert "damaged" in (res / "index.html").read_text() or \
+        assert "damaged" in report_text(res) or \
             "INCOMPLETE" in err or "incomplete" in err
     else:
         assert err == ""
-        assert "Gate: 2 problem(s)" in (res / "index.html").read_text() or \
-            "Gate: 1 problem(s)" in (res / "index.html").read_text()
+        assert "Gate: 2 problem(s)" in report_text(res) or \
+            "Gate: 1 problem(s)" in report_text(res)
     code, out, err = call(capsys, "gate", "--out", str(res))
     assert code == gate_code, err
     assert_error(err, needle)
@@ -233,7 +234,7 @@ def test_undamaged_results_pass(res, capsys):
     (res / "hertz" / "sweep_check.json").write_text(json.dumps(SWEEP_CHECK))
     code, out, err = call(capsys, "report", "--out", str(res))
     assert (code, err) == (0, ""), err
-    assert "report:" in out and "Sweep on Dask" in (res / "index.html").read_text()
+    assert "report:" in out and "Sweep on Dask" in report_text(res)
     code, out, err = call(capsys, "gate", "--out", str(res))
     assert (code, err) == (0, ""), err
     assert "13/13 metric(s) passed, 2 not gated (not converged), 0 problem(s)" in out
@@ -255,7 +256,7 @@ def test_the_other_cases_are_still_reported(res, capsys):
     assert_error(err, "DAMAGED hertz: ")
     assert_error(err, "INCOMPLETE third: run failed (its failure record ")
     assert_error(err, "failed.json: not a JSON object (a list))")
-    page = (res / "index.html").read_text()
+    page = report_text(res)
     assert 'id="case-other"' in page and 'id="case-hertz"' not in page
     assert "metrics.csv: empty file (0 bytes)" in page
     code, out, err = call(capsys, "gate", "--out", str(res))
@@ -333,12 +334,14 @@ def test_baselines_are_not_updated_from_damaged_results(res, capsys):
 
 def test_a_file_damaged_after_the_scan_moves_its_case_to_damaged(res):
     """The report draws from files read lazily; one that fails then is named too."""
-    from reports.render import html
+    from reports.render import pages
     from reports.store.results import scan
 
     results = scan(res)
     truncated(npz(res / "hertz"))
-    page = html.render(results, res)
+    rows = pages.write_pages(results, res)
+    page = pages.render_index(results, res, rows)
     assert not results.complete and list(results.damaged) == ["hertz"]
     assert "step_0000.npz: corrupt or truncated archive" in results.damaged["hertz"]
-    assert 'id="incomplete"' in page and 'id="case-hertz"' not in page
+    assert 'id="incomplete"' in page and rows == []
+    assert not (res / pages.PAGES / "hertz.html").exists()

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import base64
 import re
 
 import pytest
@@ -10,6 +9,7 @@ import test_cli_fakes as fakes
 from test_cli_run import HERTZ, write_case
 
 from reports.cli import main
+from reports.render.pages import report_text
 
 WEAR = HERTZ.replace('kind = "static"', 'kind = "sliding_wear"').replace(
     "[materials.b]", "i1 = 1.33e-7\n[materials.b]") + """\
@@ -42,7 +42,7 @@ def report(tmp_path_factory):
         assert main(["report", "--out", str(out)]) == 1
     finally:
         mp.undo()
-    return out, (out / "index.html").read_text()
+    return out, report_text(out)
 
 
 def section(text: str, case: str) -> str:
@@ -67,11 +67,17 @@ def test_every_case_has_its_sections(report):
     assert '<div class="sweep"><figure>' in section(text, "static__sweep_nx_ny")
 
 
-def test_plots_are_embedded_pngs(report):
+def test_plots_are_png_files_beside_the_case_pages(report):
+    """The figures are files in _report/<case>/, loaded lazily; the index has none and
+    stays small; nothing is fetched from elsewhere."""
     out, text = report
-    images = re.findall(r'src="data:image/png;base64,([A-Za-z0-9+/=]+)"', text)
+    images = re.findall(r'<img alt="[^"]*" loading="lazy" src="([^"]+)">', text)
     assert len(images) >= 10
-    assert all(base64.b64decode(i)[:8] == b"\x89PNG\r\n\x1a\n" for i in images)
+    pages = out / "_report"
+    assert all((pages / src).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" for src in images)
+    assert "data:image" not in text
+    index = (out / "index.html").read_text()
+    assert "<img" not in index and len(index.encode()) < 100_000
     assert "src=\"http" not in text and "<script" not in text  # self-contained
 
 

@@ -15,6 +15,7 @@ from cases.loader import load_case
 from reports.cli import main
 from reports.compare.verdict import decide
 from reports.render.gate import run_gate
+from reports.render.pages import report_text
 from reports.run import study_runs
 from reports.store import study_tables
 from reports.store.readers import Malformed
@@ -89,7 +90,7 @@ def test_report_and_gate(studied):
     assert run_gate(out, stream=stream) == 0
     assert "NOT CONVERGED (jump)" not in stream.getvalue()  # gross slip: all converged
     assert main(["report", "--out", str(out)]) == 0
-    html = (out / "index.html").read_text()
+    html = report_text(out)
     sec = html.split('id="jump-fretting_orthotropic"')[1].split("</div>")[0]
     assert "Cycle-jump convergence" in sec and "halving J [%]" in sec
     n = len(study_tables.read_jump_study(studied / "jump_study.csv"))

@@ -20,6 +20,7 @@ from reports.cli import main
 from reports.compare.maxima import below_depth
 from reports.registry.solvers import resolve
 from reports.render.gate import run_gate
+from reports.render.pages import report_text
 from reports.store import layout
 from reports.store.readers import read_metrics
 
@@ -73,7 +74,7 @@ def test_a_declared_quantity_is_shown_not_gated(tmp_path, skewed):
     assert "NOT GATED small ic-analytic p_max rel (1 row(s), largest 0.3 at step 0): " \
         "not converged; declared: made up" in printed
     assert main(["report", "--out", str(out)]) == 0
-    html = (out / "index.html").read_text()
+    html = report_text(out)
     assert "Not converged, so not gated" in html and "made up for the test" in html
 
 

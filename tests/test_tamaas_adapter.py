@@ -24,6 +24,7 @@ import analytic  # noqa: E402
 import tamaas_adapter  # noqa: E402
 from reports.cli import main  # noqa: E402
 from reports.registry import plugins, solvers  # noqa: E402
+from reports.render.pages import report_text
 from reports.store import layout  # noqa: E402
 from tamaas_adapter import volume  # noqa: E402
 
@@ -68,7 +69,7 @@ def test_the_chain_reports_and_gates_tamaas(tmp_path, capsys):
     skipped = json.loads((out / "pin_on_disk" / layout.MANIFEST).read_text())["skipped"]
     assert skipped["tamaas"] == "sliding wear: Tamaas has no wear law"
     assert main(["report", "--out", str(out)]) == 0
-    page = (out / "index.html").read_text()
+    page = report_text(out)
     assert "tamaas-analytic" in page and "sliding wear: Tamaas has no wear law" in page
     capsys.readouterr()
     assert main(["gate", "--out", str(out)]) == 0

@@ -18,7 +18,7 @@ def results_dir(args: argparse.Namespace) -> Path:
 
 
 def cmd_report(args: argparse.Namespace) -> int:
-    from reports.render.html import write_report
+    from reports.render.pages import write_report
 
     out = results_dir(args)
     try:

@@ -1,35 +1,29 @@
-"""``contact-vv report``: one self-contained ``DIR/index.html`` (PNG plots inlined as
-base64) with a section per case: tractions, difference maps, σ_VM planes, wear, evolution,
-fretting loops, sweep, metrics coloured by pass/fail, grid convergence and provenance."""
+"""The section of one case in the report (its page, :mod:`reports.render.pages`):
+tractions, difference maps, σ_VM planes, wear, evolution, fretting loops, sweep, metrics
+coloured by pass/fail, grid convergence and provenance (PNG plots inlined as base64; the
+pages write them out as files)."""
 
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import pandas as pd
 
-from cases.result import atomic_write_text
 from reports.registry import solvers as registry
-from reports.registry.errors import UserError
 from reports.registry.tolerances import GATED
 from reports.render import plots
-from reports.render.gate import metrics_table, problems
-from reports.render.html_blocks import CSS, escape, fig, table_html
+from reports.render.html_blocks import escape, fig, table_html
 from reports.render.html_sections import (
     convergence_section,
     jump_section,
     probe_section,
     provenance_html,
     sweep_check_section,
-    thresholds_html,
 )
 from reports.render.study_frames import scales
-from reports.store import layout
 from reports.store.event_table import EVENTS_NOTE, events_view
 from reports.store.readers import gated, ungated
-from reports.store.results import CaseResults, Scan, not_converged, scan
-from reports.studies import gridstudy
+from reports.store.results import CaseResults, not_converged
 
 
 def _worst(metrics: pd.DataFrame) -> pd.DataFrame:
@@ -77,8 +71,12 @@ def _header(case: CaseResults) -> list[str]:
              f"<p>{escape(mf.get('description', ''))} — kind <b>{escape(mf.get('kind'))}</b>, "
              f"solvers {escape(', '.join(mf.get('solvers', [])))}"
              + (" (quick grids)" if mf.get("quick") else "") + "</p>"]
-    for solver, reason in mf.get("skipped", {}).items():
-        parts.append(f'<p class="warn">{escape(solver)} not run: {escape(reason)}</p>')
+    skipped = mf.get("skipped", {})
+    if skipped:  # one line, the reasons one click away
+        reasons = "".join(f"<li><b>{escape(s)}</b>: {escape(r)}</li>"
+                          for s, r in skipped.items())
+        parts.append(f'<details class="not-run"><summary>not run: '
+                     f'{escape(", ".join(skipped))}</summary><ul>{reasons}</ul></details>')
     bad = not_converged(case.summary)
     if not bad.empty:
         parts.append(f'<p class="warn bad">{len(bad)} output step(s) did not converge</p>')
@@ -202,113 +200,3 @@ def _metric_row_class(row: pd.Series) -> str:
     if row.get("status", GATED) != GATED:
         return "ng"
     return "pass" if bool(row["passed"]) else "fail"
-
-
-def render(results: Scan, out: Path) -> str:
-    """The whole report page.  A case whose files turn out to be damaged while its
-    section is drawn is moved from ``results.complete`` to ``results.damaged``."""
-    from reports.store.manifest import provenance
-    from reports.store.readers import DamagedResult
-
-    when = provenance()["date"]
-    toc, sections = [], []
-    for case in list(results.complete):
-        try:
-            section = case_section(case)
-        except DamagedResult as exc:
-            results.complete.remove(case)
-            results.damaged[case.path.name] = str(exc)
-            continue
-        sections.append(section)
-        m = case.metrics
-        n_ok, n_on = _n_passed(m), int(gated(m).sum())
-        bad = len(not_converged(case.summary))
-        grid = len(gridstudy.unsettled(case.convergence))
-        jump = len(gridstudy.unsettled(case.jump_study))
-        status = "ok" if n_ok == n_on and not bad else "bad"
-        toc.append(f'<li><a href="#case-{escape(case.name)}">{escape(case.name)}</a> '
-                   f'<span class="{status}">{n_ok}/{n_on} metrics passed'
-                   + (f", {len(m) - n_on} not gated" if n_on < len(m) else "")
-                   + (f", {bad} not converged" if bad else "") + "</span>"
-                   + (f' <span class="bad">{grid} quantities not grid-converged</span>'
-                      if grid else "")
-                   + (f' <span class="bad">{jump} quantities not converged in the cycle '
-                      'jump</span>' if jump else "") + "</li>")
-    warn = ""
-    if results.incomplete or results.damaged:
-        items = "".join(f"<li><b>{escape(k)}</b>: {escape(v)}</li>"
-                        for k, v in results.incomplete.items())
-        items += "".join(f"<li><b>{escape(k)}</b>: damaged: {escape(v)}</li>"
-                         for k, v in results.damaged.items())
-        warn = (f'<div class="warn" id="incomplete"><b>Incomplete or damaged runs (not '
-                f"reported):</b><ul>{items}</ul></div>")
-    found = problems(results)
-    table = metrics_table(results)
-    n_on = int(gated(table).sum())
-    off = f", {len(table) - n_on} not converged and not gated" if n_on < len(table) else ""
-    verdict = (f'<p class="ok" id="verdict">Gate: pass ({n_on} gated metrics{off})</p>'
-               if not found else
-               f'<p class="bad" id="verdict">Gate: {len(found)} problem(s)</p><ul>'
-               + "".join(f"<li>{escape(x)}</li>" for x in found[:50]) + "</ul>")
-    return (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'>"
-            f"{_TITLE}<style>{CSS}</style></head><body>"
-            f"<h1>contact-vv verification report</h1><p>Results in <code>{escape(out)}</code>, "
-            f"report generated {escape(when)}.</p>{warn}{verdict}"
-            f"<nav><h2>Cases</h2><ul>{''.join(toc)}</ul></nav>{thresholds_html(out)}"
-            f"{''.join(sections)}"
-            "</body></html>")
-
-
-#: the title every report has: an ``index.html`` without it is not one (not replaced)
-_TITLE = "<title>contact-vv report</title>"
-
-
-def _check_replaceable(path: Path) -> None:
-    """UserError if ``path`` exists and is not a report a run of ``report`` wrote."""
-    if not (path.exists() or path.is_symlink()):
-        return
-    if path.is_symlink() or not path.is_file():
-        raise UserError(f"{path} is not a regular file; refusing to replace it (remove it "
-                        "or report another directory)")
-    with open(path, "rb") as fh:
-        head = fh.read(4096)
-    if _TITLE.encode() not in head:
-        raise UserError(f"{path} exists and is not a contact-vv report; refusing to "
-                        "replace it (remove it or report another directory)")
-
-
-def _thresholds_problem(out: Path) -> list[str]:
-    """One line if ``out/thresholds.csv`` exists and cannot be read."""
-    from reports.store.readers import DamagedResult, read_result, read_thresholds
-
-    path = out / layout.THRESHOLDS
-    if not (path.exists() or path.is_symlink()):
-        return []
-    try:
-        read_result(path, read_thresholds)
-    except DamagedResult as exc:
-        return [f"DAMAGED {layout.THRESHOLDS}: {exc}"]
-    return []
-
-
-def write_report(out: Path) -> Path:
-    """Write ``out/index.html`` atomically from whatever complete results ``out`` holds.
-
-    Incomplete or damaged cases are listed in the page, and then raised as
-    :class:`RunFailed` (one line each, the page written: the CLI exits 1).
-    """
-    from reports.registry.errors import RunFailed
-    from reports.render.gate import case_problems
-
-    out = Path(out)
-    results = scan(out)
-    if results.empty and not (out / layout.THRESHOLDS).exists():
-        raise UserError(f"no results in {out} (run `contact-vv run` first)")
-    path = out / layout.REPORT
-    _check_replaceable(path)
-    atomic_write_text(path, render(results, out))
-    lines = case_problems(results) + _thresholds_problem(out)
-    if lines:
-        raise RunFailed([*lines, f"report {path} written without the {len(lines)} "
-                         "incomplete or damaged result(s) above"])
-    return path
