@@ -36,6 +36,7 @@ HEX_FACES = np.array([[0, 1, 2, 3], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5],
 TET10_EDGES = ((0, 1), (1, 2), (0, 2), (0, 3), (1, 3), (2, 3))
 CANDIDATES = 24  # simplices tried per point before all of them
 INSIDE = 1e-9  # barycentric tolerance
+SNAP = 1e-10  # barycentric coordinates below this are zero
 
 
 @dataclass(frozen=True)
@@ -82,7 +83,11 @@ class Simplices:
                 if lam_i[j].min() >= -INSIDE:
                     found[i], bary[i] = c[0, j], lam_i[j]
                     break
-        return found, bary
+        # a point on a vertex or an edge takes the values there exactly: round-off in
+        # the coordinates of the others would otherwise leak their values in (a
+        # pressure of 1e-17 where the table holds 0 is a contact cell)
+        bary = np.where(np.abs(bary) < SNAP, 0.0, bary)
+        return found, bary / bary.sum(axis=1, keepdims=True)
 
 
 def surface_triangles(xyz: np.ndarray, cells: dict[str, np.ndarray], on: np.ndarray

@@ -75,7 +75,9 @@ def build_parser() -> argparse.ArgumentParser:
             p.add_argument("--solver", help="comma-separated solvers of "
                            f"{','.join(solvers.names())} (default: the built-in ones that "
                            "run on the case by default, with their exact relations at "
-                           "--quick; a plugin only when named: contact-vv list)")
+                           "--quick; a plugin only when named: contact-vv list), or "
+                           "external:NAME for the result files of the case's "
+                           "[external.NAME] table")
             p.add_argument("--quick", action="store_true",
                            help="coarse grids of the case's [quick] table (CI)")
             p.add_argument("--set", action="append", metavar="KEY=VALUE", dest="overrides",
