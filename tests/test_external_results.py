@@ -275,3 +275,11 @@ def test_bad_files_are_named_and_the_results_kept(fem_results, tmp_path):
     good.write_text(missing)
     with pytest.raises(CaseError, match=r"external\.fe\.files: no file .*gone\.vtu"):
         solve(load_case(good, quick=True)[0], name="fe")
+
+
+def test_result_sets_come_first_by_name_whatever_the_order_named():
+    from reports.run.plan import select_solvers
+
+    for order in (["external:b", "ic", "external:a"], ["external:a", "external:b", "ic"]):
+        chosen, _ = select_solvers(order, relations=False)
+        assert chosen == ["external:a", "external:b", "ic"]

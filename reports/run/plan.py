@@ -198,8 +198,8 @@ def select_solvers(requested: list[str] | None, *, relations: bool = True
         for s in requested:
             solvers.resolve(s)  # raises SolverUnavailable with the reason
         # result files of another code come first, like a plugin: the built-in solvers
-        # are their references
-        external = list(dict.fromkeys(s for s in requested if solvers.is_external(s)))
+        # are their references; by name, so that no pair depends on the order named
+        external = sorted({s for s in requested if solvers.is_external(s)})
         return external + [s for s in known if wanted(s, requested)], {}
     usable, skipped = [], {}
     for s in known:
