@@ -25,6 +25,7 @@ stress planes, the scalars.
 from __future__ import annotations
 
 import numpy as np
+from scipy.spatial import QhullError
 
 from cases.model import Case, CaseError
 from cases.result import (
@@ -166,7 +167,12 @@ def step_result(frame: Frame, case: Case, spec: Spec, number: int) -> StepResult
     fields = surface_fields(frame, surface, case, spec)
     plane_set = {}
     if any(c in frame.values for c in (*STRESS_COMPONENTS, "vm")):
-        plane_set = planes(frame, Volume.of(frame.xyz, frame.cells), case, spec)
+        try:
+            volume = Volume.of(frame.xyz, frame.cells)
+        except (ValueError, QhullError) as exc:  # e.g. stresses on surface points only
+            raise CaseError(f"{frame.path}: the stresses need points that fill the body "
+                            f"below the surface (no tetrahedra from them: {exc})") from None
+        plane_set = planes(frame, volume, case, spec)
     values = scalars(frame, surface, fields, plane_set, case, spec)
     values["step"] = float(number)
     g = case.grid

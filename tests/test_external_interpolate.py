@@ -71,3 +71,23 @@ def test_six_node_triangle_splits_into_four_of_quarter_area():
     a, b = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
     area = 0.5 * np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0])
     assert np.allclose(area, 0.5)
+
+
+def test_stresses_on_surface_points_only_are_refused_with_the_file_named(tmp_path):
+    """A CSV table whose stresses lie on the surface alone gives no tetrahedra: the error
+    names the file, not a Qhull traceback."""
+    import pandas as pd
+    import pytest
+
+    from cases import load_point
+    from cases.model import CaseError
+    from external_results import solve
+
+    x, y = np.meshgrid(np.linspace(-1, 1, 9), np.linspace(-1, 1, 9), indexing="ij")
+    pd.DataFrame({"x": x.ravel(), "y": y.ravel(), "z": 0.0, "p": 1.0, "s": 2.0}).to_csv(
+        tmp_path / "flat.csv", index=False)
+    case = load_point("hertz", quick=True)
+    case = case.with_changes(source=str(tmp_path / "case.toml"), external={"flat": {
+        "files": "flat.csv", "fields": {"p_n": "p", "vm": "s"}, "budget": {"default": 0.1}}})
+    with pytest.raises(CaseError, match=r"flat\.csv: the stresses need points that fill"):
+        solve(case, name="flat")
