@@ -32,7 +32,10 @@ def test_sliding_threshold_table_csv_and_report(tmp_path, capsys):
     assert list(table["grid"]) == ["41x41", "27x27", "exact", "41x41", "27x27"]
     bisected = table[table["status"].str.startswith("bisected")]
     assert (bisected["hi"] - bisected["lo"] <= 0.025 + 1e-12).all()
-    assert (bisected["evaluations"] == 2 + 3).all()  # 0.2 wide: 3 halvings to <= 0.025
+    # 0.2 wide: 3 halvings to <= 0.025 and both ends on the case grid; the coarser grid's
+    # search starts in that interval, where its threshold is too: its two ends
+    assert list(bisected["evaluations"]) == [2 + 3, 2, 2 + 3, 2]
+    assert (bisected.groupby("solver")["threshold"].nunique() == 1).all()
     assert (table["at"] == "step=0").all()
     exact = table[table["grid"] == "exact"].iloc[0]
     assert exact["threshold"] == pytest.approx(0.3047, abs=1e-4)

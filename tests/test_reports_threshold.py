@@ -9,6 +9,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from analytic.pointforce import COMPONENTS
 from analytic.sliding import sliding_sphere_stresses, trailing_edge_von_mises
@@ -19,7 +21,9 @@ from reports.studies.events import (
     MAX_HALVINGS,
     EventOptions,
     EventUndefined,
+    Guess,
     NoChange,
+    _exact_halvings,
     bisect,
     has_stick,
     select_step,
@@ -78,6 +82,42 @@ def test_bisection_ends_for_any_resolution(lo, hi, t0, resolution):
     assert b.lo <= t0 <= b.hi
     assert math.nextafter(b.lo, math.inf) == b.hi or b.hi - b.lo <= resolution
     assert b.evaluations <= 2 + MAX_HALVINGS
+
+
+@settings(max_examples=300, deadline=None)
+@given(lo=st.floats(-1e3, 1e3), width=st.floats(1e-3, 1e3), halvings=st.integers(1, 30),
+       at_t=st.floats(0, 1), at_g=st.floats(0, 1), true_above=st.booleans(),
+       guess_above=st.booleans(), known=st.sampled_from(["none", "lo", "hi", "both"]))
+def test_a_guess_gives_plain_bisections_interval_bit_for_bit(
+        lo, width, halvings, at_t, at_g, true_above, guess_above, known):
+    """Searched from a guess (another grid's or cycle's threshold, either side, either
+    orientation), the final interval is plain bisection's to the last bit where the event
+    changes once; 2 evaluations when the guess falls in it, at most 2 + 2 log2 of the
+    leaves (3 if the guess points the wrong way); the same refusal where it does not
+    change.  (Near the float spacing, where bisection's depth could depend on its path,
+    the guess is not used.)"""
+    hi = lo + width
+    resolution = width / 2**halvings * 1.01
+    t0 = lo + at_t * width
+    assume(lo < t0 < hi)
+
+    def event(x: float) -> bool:
+        return (x > t0) == true_above
+
+    ends = {"at_lo": event(lo) if known in ("lo", "both") else None,
+            "at_hi": event(hi) if known in ("hi", "both") else None}
+    plain = bisect(event, lo, hi, resolution)
+    guess = Guess(lo + at_g * width, (not true_above) if guess_above else true_above)
+    guided = bisect(event, lo, hi, resolution, guess=guess, **ends)
+    assert (guided.lo, guided.hi, guided.at_lo, guided.at_hi) == \
+        (plain.lo, plain.hi, plain.at_lo, plain.at_hi)
+    # outwards and back: one doubling walk (and a second one if it turned the wrong way)
+    walks = 2 if guess.at_lo == plain.at_lo else 3
+    assert guided.evaluations <= 2 + walks * (halvings + 1)
+    if plain.lo <= guess.value < plain.hi and _exact_halvings(lo, hi, resolution):
+        assert guided.evaluations <= 2  # a known end is not evaluated again
+    with pytest.raises(NoChange, match="at both ends"):
+        bisect(lambda x: true_above, lo, hi, resolution, guess=guess)
 
 
 # ------------------------------------------------------------------ request parsing

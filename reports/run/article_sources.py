@@ -44,6 +44,11 @@ THRESHOLD_SOLVERS = ("ic", "analytic")
 FRETTING_ON_REQUEST = ("fem",)
 
 
+#: evaluations a bisection searched from a nearby threshold is costed at (2 where the
+#: threshold has not moved, one or two more where it moved by an interval or more)
+GUESSED = 3
+
+
 @dataclass(frozen=True)
 class ClaimThreshold:
     """One ``contact-vv threshold`` a claim reads: its ``request`` (case, key, event,
@@ -175,14 +180,19 @@ def plan(out: Path, quick: bool, chosen: list[str], limits: Limits,
         if spec.claim not in claims:
             continue
         name = load_case(spec.request.case, quick=quick)[0].name
+        searched = False  # the first bisection; the others search from its threshold
         for request, at in threshold_requests(spec, quick, chosen, limits):
             if _have(table, name, spec, at, quick):
                 continue
             work.requests.append(request)
             case = load_case(request.case, quick=quick, overrides=request.overrides)[0]
-            bisections = 2 + math.ceil(math.log2((request.hi - request.lo) / request.resolution))
+            full = 2 + math.ceil(math.log2((request.hi - request.lo) / request.resolution))
+            sizes = [max(g, 1.0) ** 2 for g in request.grids]
+            evaluations = (0 if searched else full * sizes[0] - GUESSED * sizes[0]) \
+                + GUESSED * sum(sizes)
+            searched = True
             for s in request.solvers:
-                _cost(work, s, case, bisections * sum(max(g, 1.0) ** 2 for g in request.grids))
+                _cost(work, s, case, evaluations)
     return work
 
 
@@ -194,8 +204,9 @@ def execute(work: Work, out: Path, *, progress: bool | None,
 
     codes = [report([run_plan(p, out, progress=progress)]) for p in work.plans]
     found: dict[tuple[str, str], list[str]] = {}
+    guesses: dict = {}  # each output cycle's bisection searched from the one before
     for k, request in enumerate(work.requests):
-        rows = th.run(request)
+        rows = th.run(request, guesses=guesses)
         write_rows(out, rows)
         group = (Path(request.case).stem, request.event)
         found.setdefault(group, []).extend(

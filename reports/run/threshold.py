@@ -4,7 +4,7 @@ The parameter value (a dotted case key such as ``friction.mu``) at which an even
 :mod:`reports.studies.events` changes, found by bisection per solver, per sweep point of the
 case (when it sweeps another key) and per grid:
 
-1. every (point, solver, grid) evaluates the event at both ends of the bracket
+1. the first grid of every (point, solver) evaluates the event at both ends of the bracket
    ``[lo, hi]`` (``--range``, else :data:`DEFAULTS`); the event must differ there, else
    the command fails naming the solver, grid and key before any bisection;
 2. each then halves its bracket until it is at most ``--resolution`` wide: the threshold
@@ -38,7 +38,15 @@ from reports.registry.tolerances import check_keys
 from reports.run.plan import Limits, check_fits
 from reports.run.units import run_unit
 from reports.studies import events
-from reports.studies.events import EventOptions, EventUndefined, Exact, bisect, event
+from reports.studies.events import (
+    EventOptions,
+    EventUndefined,
+    Exact,
+    Guess,
+    NoChange,
+    bisect,
+    event,
+)
 
 #: default (bracket, resolution) per parameter
 DEFAULTS: dict[str, tuple[tuple[float, float], float]] = {
@@ -193,8 +201,10 @@ class Unit:
         return row
 
 
-def _ends(unit: Unit) -> tuple[bool, bool] | dict[str, Any]:
-    """The event at both ends of the bracket, or the row saying why there is none."""
+def _ends(unit: Unit, evaluate: bool = True
+          ) -> tuple[bool | None, bool | None] | dict[str, Any]:
+    """The event at both ends of the bracket (unknown, None, unless ``evaluate``), or the
+    row saying why there is none."""
     r = unit.request
     for value in (r.lo, r.hi):
         reason = solvers.unsupported(unit.solver, unit.case(value))
@@ -203,6 +213,8 @@ def _ends(unit: Unit) -> tuple[bool, bool] | dict[str, Any]:
         reason = None if r.explicit else solvers.not_by_default(unit.solver, unit.case(value))
         if reason is not None:
             return unit.row(status=f"not by default: {reason}")
+    if not evaluate:
+        return None, None
     try:
         return unit(r.lo), unit(r.hi)
     except EventUndefined as exc:
@@ -261,14 +273,22 @@ def _no_change(request: Request, stuck: list[tuple[Unit, bool]]) -> UserError:
                      f"[{request.lo:g}, {request.hi:g}] ({which}); widen --range")
 
 
-def _bisect_unit(unit: Unit, ends: tuple[bool, bool]) -> dict[str, Any]:
+def _bisect_unit(unit: Unit, ends: tuple[bool | None, bool | None],
+                 guesses: dict[tuple, Guess]) -> dict[str, Any]:
+    """The row of ``unit``'s bisection, searched from the guess of its (case, point,
+    solver) if an earlier one left it there; its own result left as the next guess."""
     r, ev = unit.request, event(unit.request.event)
+    key = guess_key(unit)
     try:
-        b = bisect(unit, r.lo, r.hi, r.resolution, at_lo=ends[0], at_hi=ends[1])
+        b = bisect(unit, r.lo, r.hi, r.resolution, at_lo=ends[0], at_hi=ends[1],
+                   guess=guesses.get(key))
+    except NoChange as exc:
+        raise _no_change(r, [(unit, exc.value)]) from None
     except RuntimeError as exc:
         return unit.row(status=f"failed: {exc}")
     except EventUndefined as exc:
         return unit.row(status=f"n/a: {exc}")
+    guesses[key] = Guess(b.value, b.at_lo)
     below, above = (ev.true_means, ev.false_means) if b.at_lo else \
         (ev.false_means, ev.true_means)
     return unit.row(threshold=b.value, uncertainty=b.uncertainty, lo=b.lo, hi=b.hi,
@@ -280,24 +300,45 @@ def _bisect_unit(unit: Unit, ends: tuple[bool, bool]) -> dict[str, Any]:
 NOTHING = ("unsupported", "not by default", "n/a")
 
 
-def run(request: Request, log: Callable[[str], None] | None = None) -> list[dict[str, Any]]:
+def guess_key(unit: Unit) -> tuple:
+    """What a bisection's guess is kept under: the case, event, key, sweep point and
+    solver (its grids and output cycles share it)."""
+    r = unit.request
+    return (r.case, r.event, r.param, unit.point, unit.solver)
+
+
+def run(request: Request, log: Callable[[str], None] | None = None,
+        guesses: dict[tuple, Guess] | None = None) -> list[dict[str, Any]]:
     """The threshold rows of ``request`` (module doc): UserError if the event does not
     change over the bracket for some unit, or if no solver can say anything of it; a unit
-    whose solver fails has a ``failed`` row."""
-    ends: list[tuple[Unit, tuple[bool, bool] | dict[str, Any]]] = []
+    whose solver fails has a ``failed`` row.
+
+    A unit whose (case, point, solver) has already been bisected (another grid of this
+    request, or of an earlier request sharing ``guesses``: another output cycle) searches
+    from that threshold (:func:`reports.studies.events.bisect`): the same interval where
+    the event changes once in the bracket, in 2 evaluations when it has not moved.  Its
+    ends are evaluated only if the search reaches them; the first unit of each has them
+    evaluated before any bisection, so that a bracket without a change fails early."""
+    guesses = {} if guesses is None else guesses
+    ends: list[tuple[Unit, tuple[bool | None, bool | None] | dict[str, Any]]] = []
     skip: set[tuple[int, str]] = set()  # a solver that cannot say: one row, not one a grid
+    ahead: set[tuple] = set(guesses)  # (point, solver)s whose later units will have a guess
     for u in make_units(request):
         if (u.point, u.solver) not in skip:
-            ends.append((u, _ends(u)))
-            if isinstance(ends[-1][1], dict) and not ends[-1][1]["status"].startswith("fail"):
-                skip.add((u.point, u.solver))
+            ends.append((u, _ends(u, evaluate=guess_key(u) not in ahead)))
+            if isinstance(ends[-1][1], dict):
+                if not ends[-1][1]["status"].startswith("fail"):
+                    skip.add((u.point, u.solver))
+            else:
+                ahead.add(guess_key(u))
     said = [e for _, e in ends if isinstance(e, dict)]
     if ends and len(said) == len(ends) and all(e["status"].startswith(NOTHING) for e in said):
         why = "; ".join(dict.fromkeys(f"{e['solver']}: {e['status']}" for e in said))
         raise UserError(f"{request.case}: none of the solvers {', '.join(request.solvers)} "
                         f"can locate {request.event} on this case ({why}); name another "
                         "solver with --solver")
-    stuck = [(u, e[0]) for u, e in ends if isinstance(e, tuple) and e[0] == e[1]]
+    stuck = [(u, e[0]) for u, e in ends
+             if isinstance(e, tuple) and e[0] is not None and e[0] == e[1]]
     if stuck:
         raise _no_change(request, stuck)
     rows = []
@@ -306,7 +347,7 @@ def run(request: Request, log: Callable[[str], None] | None = None) -> list[dict
             exact = _exact_row(u)
             if exact is not None:
                 rows.append(exact)
-        rows.append(e if isinstance(e, dict) else _bisect_unit(u, e))
+        rows.append(e if isinstance(e, dict) else _bisect_unit(u, e, guesses))
         if log is not None:
             log(row_line(rows[-1]))
     return add_grid_shift(rows)

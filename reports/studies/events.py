@@ -118,7 +118,11 @@ def event(name: str) -> Event:
 
 
 class NoChange(ValueError):
-    """The event has the same value at both ends of the bracket."""
+    """The event has the same value ``value`` at both ends of the bracket."""
+
+    def __init__(self, message: str, value: bool):
+        super().__init__(message)
+        self.value = value
 
 
 @dataclass(frozen=True)
@@ -146,23 +150,33 @@ MAX_HALVINGS = 1100
 
 
 def bisect(test: Callable[[float], bool], lo: float, hi: float, resolution: float, *,
-           at_lo: bool | None = None, at_hi: bool | None = None) -> Bisection:
+           at_lo: bool | None = None, at_hi: bool | None = None,
+           guess: Guess | None = None) -> Bisection:
     """Halve [lo, hi] until it is at most ``resolution`` wide, keeping ``test`` different
     at its ends, or until no float lies between them (a resolution below the bracket's
     float spacing: the returned interval is then wider than asked); ``at_lo``/``at_hi``
     are the end values if already known.
-    :class:`NoChange` if ``test`` is the same at both ends."""
+    :class:`NoChange` if ``test`` is the same at both ends.
+
+    With a ``guess`` (the threshold of a nearby problem: another grid, another output
+    cycle) the same final interval is searched from the guess outwards
+    (:func:`_search_leaves`): where the event changes once in [lo, hi], as bisection
+    assumes, the result is the one plain bisection gives, bit for bit, in 2 evaluations
+    when the guess falls in it."""
     if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
         raise ValueError(f"bracket [{lo}, {hi}] is not an interval")
     if not (math.isfinite(resolution) and resolution > 0):
         raise ValueError(f"resolution {resolution} is not a positive number")
+    halvings = _exact_halvings(lo, hi, resolution)
+    if guess is not None and halvings is not None:
+        return _search_leaves(test, lo, hi, halvings, at_lo, at_hi, guess)
     count = 0
     if at_lo is None:
         at_lo, count = bool(test(lo)), count + 1
     if at_hi is None:
         at_hi, count = bool(test(hi)), count + 1
     if at_lo == at_hi:
-        raise NoChange(f"the event is {at_lo} at both ends of [{lo:g}, {hi:g}]")
+        raise NoChange(f"the event is {at_lo} at both ends of [{lo:g}, {hi:g}]", at_lo)
     # halvings to the resolution, and never past the floats between lo and hi: a
     # resolution below their spacing ends where the midpoint is an end (MAX_HALVINGS)
     ratio = (hi - lo) / resolution
@@ -180,6 +194,94 @@ def bisect(test: Callable[[float], bool], lo: float, hi: float, resolution: floa
             hi = mid
         count += 1
     return Bisection(lo, hi, at_lo, at_hi, count)
+
+
+@dataclass(frozen=True)
+class Guess:
+    """Where a nearby bisection ended: its threshold ``value`` and the event ``at_lo``
+    below it (the side a search from the guess turns to)."""
+
+    value: float
+    at_lo: bool
+
+
+def _exact_halvings(lo: float, hi: float, resolution: float) -> int | None:
+    """The halvings :func:`bisect` makes of [lo, hi] whatever the event, or None where
+    the stop rule (the width within 1e-9 of the resolution) or the float spacing could
+    end it at another depth on another path."""
+    ratio = (hi - lo) / resolution
+    if not (math.isfinite(ratio) and 1.0 < ratio < 2.0**50):
+        return None
+    steps = math.ceil(math.log2(ratio))
+    if (hi - lo) / 2.0 ** (steps - 1) <= resolution * (1 + 1e-6) or \
+            (hi - lo) / 2.0**steps <= 1e-12 * max(abs(lo), abs(hi)):
+        return None
+    return steps
+
+
+def _leaf_point(lo: float, hi: float, halvings: int, k: int) -> float:
+    """The k-th of the 2^halvings + 1 points that bisection of [lo, hi] can reach,
+    computed by the same midpoints (bit for bit) as :func:`bisect` on its way there."""
+    if k == 2**halvings:
+        return hi
+    a, b = lo, hi
+    for bit in reversed(range(halvings)):
+        mid = 0.5 * a + 0.5 * b
+        a, b = (mid, b) if (k >> bit) & 1 else (a, mid)
+    return a
+
+
+def _search_leaves(test: Callable[[float], bool], lo: float, hi: float, halvings: int,
+                   at_lo: bool | None, at_hi: bool | None, guess: Guess) -> Bisection:
+    """The leaf of :func:`bisect`'s tree whose ends differ, found from the guess's leaf:
+    its two ends, then outwards by doubling steps towards the side ``guess.at_lo`` points
+    to (the other side if the change is not there), then halving."""
+    n = 2**halvings
+    known = {k: v for k, v in ((0, at_lo), (n, at_hi)) if v is not None}
+    count = 0
+
+    def at(k: int) -> bool:
+        nonlocal count
+        if k not in known:
+            known[k], count = bool(test(_leaf_point(lo, hi, halvings, k))), count + 1
+        return known[k]
+
+    g = min(max(int((guess.value - lo) / (hi - lo) * n), 0), n - 1)
+    if g + 1 < n and guess.value >= _leaf_point(lo, hi, halvings, g + 1):
+        g += 1  # the leaf of the guess by its own end points, not the rounded ratio
+    elif g > 0 and guess.value < _leaf_point(lo, hi, halvings, g):
+        g -= 1
+    if at(g) != at(g + 1):
+        k = g
+    else:
+        v = at(g)
+        up = (g + 1, 1, n) if v == guess.at_lo else (g, -1, 0)
+        down = (g, -1, 0) if v == guess.at_lo else (g + 1, 1, n)
+        for start, sign, end in (up, down):
+            k = _gallop(at, v, start, sign, end)
+            if k is not None:
+                break
+        else:
+            raise NoChange(f"the event is {v} at both ends of [{lo:g}, {hi:g}]", v)
+    return Bisection(_leaf_point(lo, hi, halvings, k), _leaf_point(lo, hi, halvings, k + 1),
+                     at(k), at(k + 1), count)
+
+
+def _gallop(at: Callable[[int], bool], v: bool, start: int, sign: int, end: int
+            ) -> int | None:
+    """From index ``start`` (event ``v``) towards ``end`` by steps 1, 2, 4, ... until the
+    event differs, then halving back: the lower index of the leaf where it changes, or
+    None if it is ``v`` up to ``end``."""
+    j, step = start, 1
+    while j != end:
+        nxt = j + sign * min(step, abs(end - j))
+        if at(nxt) != v:
+            while abs(nxt - j) > 1:
+                m = (j + nxt) // 2
+                j, nxt = (m, nxt) if at(m) == v else (j, m)
+            return min(j, nxt)
+        j, step = nxt, 2 * step
+    return None
 
 
 # ------------------------------------------------------------------ output step
