@@ -35,9 +35,14 @@ def style(solver: str) -> dict:
 
 
 def png(fig: Figure) -> bytes:
-    """Render and close a figure."""
+    """Render and close a figure, laid out by matplotlib's constrained layout (set here
+    if the figure has no layout engine), which keeps its labels inside the canvas: it is
+    saved as laid out (``bbox_inches="tight"`` would draw each figure twice to crop a few
+    pixels of margin)."""
+    if fig.get_layout_engine() is None:
+        fig.set_layout_engine("constrained")
     buf = io.BytesIO()
-    fig.savefig(buf, format="png", dpi=DPI, bbox_inches="tight")
+    fig.savefig(buf, format="png", dpi=DPI)
     plt.close(fig)
     return buf.getvalue()
 
