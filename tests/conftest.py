@@ -18,6 +18,15 @@ from vv_testing import load_bundled
 _ONE_BLAS_THREAD = threadpool_limits(1) if os.environ.get("PYTEST_XDIST_WORKER") else None
 
 
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The modules marked ``long`` (the quick chain's and the quick article run's) first,
+    in their collected order (a stable sort): under ``--dist loadfile
+    --no-loadscope-reorder`` the two workers start on them and share the short modules
+    at the end, instead of one of them starting a long module when the other has little
+    left."""
+    items.sort(key=lambda item: item.get_closest_marker("long") is None)
+
+
 @pytest.fixture(scope="session")
 def bundled_case():
     """``bundled_case(name, quick=False, overrides=None, index=0) -> Case``: a bundled case

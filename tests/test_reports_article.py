@@ -22,6 +22,8 @@ from reports.studies.claims.finding import ARTICLE_GRID, FAILS, HOLDS, UNDECIDED
 from reports.studies.claims.fretting import CONTROLS, READINGS
 from reports.studies.claims.sources import collect
 
+#: its shared run takes minutes: scheduled first (tests/conftest.py)
+pytestmark = pytest.mark.long
 #: the verdicts at quick size, ic and the closed forms (reasons in each finding's ``why``)
 QUICK = {1: HOLDS, 2: HOLDS, 3: HOLDS, 4: ARTICLE_GRID, 5: HOLDS, 6: HOLDS, 7: HOLDS,
          8: UNDECIDED, 9: HOLDS, 10: HOLDS, 11: HOLDS, 12: UNDECIDED, 13: FAILS}

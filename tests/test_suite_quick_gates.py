@@ -31,6 +31,8 @@ from reports.cli import main
 from reports.render.pages import report_text
 from reports.store import layout
 
+#: its shared run takes minutes: scheduled first (tests/conftest.py)
+pytestmark = pytest.mark.long
 BASELINES = Path(__file__).resolve().parent / "baselines"
 #: the FEM runs every bundled case by default
 WITH_FEM = tuple(BUNDLED)
