@@ -131,23 +131,27 @@ def _tangential_rows(p: Problem, J, b, s, L, act, nk, d_e, ecol, dcol) -> None:
     # decoupled: Δd_t has only tangential columns, Δd_z only normal ones
     t, z = (slice(0, 2 * na), slice(2 * na, nk)) if p.op.decoupled else (
         slice(0, nk), slice(0, nk))
-    dx, dy, dz = J[ix[k_sl], t], J[iy[k_sl], t], J[iz[k_sl], z]
-    new_x, new_y = np.zeros((k_sl.size, nk)), np.zeros((k_sl.size, nk))
-    new_x[:, t] = A[:, 0, 0, None] * dx + A[:, 0, 1, None] * dy
-    new_y[:, t] = A[:, 1, 0, None] * dx + A[:, 1, 1, None] * dy
-    new_x[:, z] += nhat[:, 0, None] * dz
-    new_y[:, z] += nhat[:, 1, None] * dz
+    kx, ky, kz = ix[k_sl], iy[k_sl], iz[k_sl]
+    dx, dy, dz = J[kx, t], J[ky, t], J[kz, z]
     IP = (np.eye(2)[None] - ps[:, None, None] * P) / rr[:, None, None]
     cwk = p.cw[nodes]
     rhs = -L.F[:2, nodes].T / rr[:, None] - (
         np.einsum("kab,kb->ka", A, d_e[:2, nodes].T) + nhat * d_e[2, nodes][:, None])
-    for c, new in ((0, new_x), (1, new_y)):
-        k = (ix, iy)[c][k_sl]
-        J[k, :nk] = new
+    for c, k in ((0, kx), (1, ky)):
+        # the new row written in place, in the order of the sum above (no zeroed row of
+        # the system's width built and copied; the same numbers)
+        row = A[:, c, 0, None] * dx
+        row += A[:, c, 1, None] * dy
+        if p.op.decoupled:  # t and z part the kept columns
+            J[k, t] = row
+            J[k, z] = nhat[:, c, None] * dz
+        else:
+            row += nhat[:, c, None] * dz
+            J[k, :nk] = row
         J[k, nk:] = 0.0
-        J[k, ix[k_sl]] += IP[:, c, 0]
-        J[k, iy[k_sl]] += IP[:, c, 1]
-        J[k, iz[k_sl]] += -nhat[:, c] * (1.0 - rr * cwk) / rr
+        J[k, kx] += IP[:, c, 0]
+        J[k, ky] += IP[:, c, 1]
+        J[k, kz] += -nhat[:, c] * (1.0 - rr * cwk) / rr
         b[k] = rhs[:, c]
         if dcol is not None:
             J[k, dcol] = -nhat[:, c]
