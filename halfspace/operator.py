@@ -11,17 +11,34 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import scipy.fft as sfft
 
 from .influence import normal_coefficients, surface_coefficients
 from .materials import Materials
 
-WORKERS = 1  # FFT threads; fixed so results are bit-reproducible for a given version
+WORKERS = 1  # FFT threads (numpy.fft: one); results bit-reproducible for a given version
+
+
+def fast_length(n: int) -> int:
+    """The smallest 5-smooth number 2^a 3^b 5^c >= n, the lengths pocketfft's real
+    transforms are fast at (what ``scipy.fft.next_fast_len(n, real=True)`` returns; the
+    products here use numpy.fft, so that a solve does not import scipy.fft and with it
+    scipy.special)."""
+    best, p5 = None, 1
+    while p5 < 2 * n:
+        p35 = p5
+        while p35 < 2 * n:
+            m = p35
+            while m < n:
+                m *= 2
+            best = m if best is None else min(best, m)
+            p35 *= 3
+        p5 *= 5
+    return max(best, 1)
 
 
 def padded_shape(nx: int, ny: int) -> tuple[int, int]:
     """FFT sizes >= 2n - 1 (no wrap-around of the aperiodic convolution)."""
-    return (sfft.next_fast_len(2 * nx - 1, real=True), sfft.next_fast_len(2 * ny - 1, real=True))
+    return fast_length(2 * nx - 1), fast_length(2 * ny - 1)
 
 
 def wrap_offsets(n: int, m: int) -> np.ndarray:
@@ -54,10 +71,10 @@ class ConvolutionOperator:
     spectra: dict[str, np.ndarray]
 
     def forward(self, f: np.ndarray) -> np.ndarray:
-        return sfft.rfft2(f, s=self.shape, workers=WORKERS)
+        return np.fft.rfft2(f, s=self.shape)
 
     def backward(self, F: np.ndarray) -> np.ndarray:
-        return sfft.irfft2(F, s=self.shape, workers=WORKERS)[: self.n[0], : self.n[1]]
+        return np.fft.irfft2(F, s=self.shape)[: self.n[0], : self.n[1]]
 
     def apply(self, key: str, f: np.ndarray) -> np.ndarray:
         return self.backward(self.spectra[key] * self.forward(f))
@@ -91,7 +108,7 @@ def normal_operator(nx: int, ny: int, dx: float, dy: float, mat: Materials) -> C
     zz = normal_coefficients(*quadrant_offsets(nx, ny, dx, dy), dx, dy, mat)
     k = mirrored(zz, PARITY["zz"], shape)
     return ConvolutionOperator(n=(nx, ny), shape=shape,
-                               spectra={"zz": sfft.rfft2(k, workers=WORKERS)})
+                               spectra={"zz": np.fft.rfft2(k)})
 
 
 class SurfaceOperator(ConvolutionOperator):
@@ -118,7 +135,7 @@ class SurfaceOperator(ConvolutionOperator):
         if key not in PARITY or (key[0] != key[1] and "z" in key and not self.coupled):
             raise KeyError(key)
         q = self._quadrant(key)
-        return sfft.rfft2(mirrored(q, PARITY[key], self.shape), workers=WORKERS)
+        return np.fft.rfft2(mirrored(q, PARITY[key], self.shape))
 
     def _quadrant(self, key: str) -> np.ndarray:
         offsets = quadrant_offsets(*self.n, self.dx, self.dy)

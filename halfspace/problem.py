@@ -5,13 +5,17 @@ evolution (:mod:`halfspace.wear`)."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from cases.model import Case
 
 from .contact import ContactSolver
 from .materials import Materials
-from .stresses import StressEvaluator
+
+if TYPE_CHECKING:
+    from .stresses import StressEvaluator
 
 
 def profile(case: Case) -> np.ndarray:
@@ -38,6 +42,8 @@ def contact_solver(case: Case) -> ContactSolver:
 
 def stress_evaluator(case: Case) -> StressEvaluator:
     """The subsurface stress evaluator (Eq. 32-34) of the reported body's depths."""
+    from .stresses import StressEvaluator  # scipy.fft: imported where stresses are sampled
+
     body = case.stress.body
     nu = case.a.nu if body == "a" else case.b.nu
     return StressEvaluator(case.grid, case.stress.z, nu, body)

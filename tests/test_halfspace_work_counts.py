@@ -89,3 +89,22 @@ def test_fretting_point_work(monkeypatch, name, index, calls, iterations):
     halfspace.solve(load_case(name, quick=True)[index])
     assert seen["calls"] == calls
     assert seen["iterations"] <= iterations + MARGIN * calls
+
+
+def test_a_solve_imports_no_scipy_fft():
+    """The influence products run on numpy.fft (halfspace/operator.py) and the stress
+    evaluator is imported where stresses are sampled: a normal and a tangential solve
+    import neither scipy.fft nor scipy.special, whose imports are a large share of a
+    process that only solves (benchmarks/README.md, "Against a peer")."""
+    import subprocess
+    import sys
+
+    code = ("import sys; from cases import load_case; "
+            "from halfspace.problem import contact_solver, profile; "
+            "c = load_case('cattaneo_mindlin', quick=True)[0]; s = contact_solver(c); "
+            "h = profile(c); n = s.solve(h, P=c.load.P); "
+            "s.solve(h, P=c.load.P, Q=(c.load.Qx, 0.0), prev=n.state); "
+            "print(sorted(m for m in ('scipy.fft', 'scipy.special') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "[]", out
