@@ -67,7 +67,8 @@ def test_partial_slip_fft_count(monkeypatch):
 def test_normal_contact_iterations_at_512():
     case = load_case("hertz", overrides={"grid.nx": 512, "grid.ny": 512})[0]
     sol = contact_solver(case).solve(profile(case), P=case.load.P)
-    assert sol.iterations <= 46 + MARGIN
+    # 46 on scipy.fft, 47 on numpy.fft (stop 56: its inverse differs in the last bit)
+    assert sol.iterations <= 47 + MARGIN
 
 
 @pytest.mark.parametrize(("name", "index", "calls", "iterations"), [
