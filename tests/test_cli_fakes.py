@@ -104,6 +104,30 @@ def solve_slow(case: Case, *, progress: bool = False, on_output=None) -> RunResu
     return solve_ic(case, progress=progress)
 
 
+def _burn(seconds: float) -> None:
+    """Spend ``seconds`` of this thread's CPU time."""
+    t0 = time.thread_time()
+    while time.thread_time() - t0 < seconds:
+        sum(range(1000))
+
+
+def solve_busy(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
+    """The fake ic after FAKE_SLEEP seconds of CPU time (a run that computes too long)."""
+    _burn(float(os.environ.get("FAKE_SLEEP", "0.5")))
+    return solve_ic(case, progress=progress)
+
+
+def solve_crowded(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
+    """The fake ic as a busy machine runs it: FAKE_SLEEP seconds of CPU time spread over
+    FAKE_STRETCH times as much wall time (computing one part in FAKE_STRETCH)."""
+    cpu = float(os.environ.get("FAKE_SLEEP", "0.5"))
+    stretch = float(os.environ.get("FAKE_STRETCH", "8"))
+    for _ in range(20):
+        _burn(cpu / 20)
+        time.sleep(cpu / 20 * (stretch - 1))
+    return solve_ic(case, progress=progress)
+
+
 def solve_streaming(case: Case, *, progress: bool = False, on_output=None) -> RunResult:
     """The fake ic with N_STEPS output steps, one every FAKE_SLEEP seconds, each handed to
     ``on_output`` as it is computed (as the half-space wear runs do)."""

@@ -1,8 +1,10 @@
-"""No run goes on past its cost estimate by more than the estimate's calibration factor
-(issue 31, reports/run/deadline.py): a solver that runs past its deadline is stopped and
-its run fails naming the deadline, in ``run``, ``sweep --workers 0`` and ``threshold``;
-``--time-factor`` scales the deadline for a slower machine; the real solvers' estimates
-are calibrated (finite deadlines), the closed form's are not.
+"""A deadline stops a hung run, never a slow one (issues 31 and 59,
+reports/run/deadline.py): a solver that spends more CPU time than its calibrated budget,
+or that makes no progress, is stopped and its run fails naming the reason, in ``run``,
+``sweep --workers 0`` and ``threshold``; a run that a busy machine stretches over many
+times its budget in wall time, while computing, finishes; ``--time-factor`` scales the
+budget for a slower processor; the real solvers' estimates are calibrated (finite
+deadlines), the closed form's are not.
 """
 
 from __future__ import annotations
@@ -23,17 +25,26 @@ from reports.run import deadline
 from reports.run.plan import Limits
 
 STOPPED = "was stopped: the run ran past its deadline of"
+HUNG = "the run made no progress"
 CASE = TINY.replace("nx = 11\nny = 11", "nx = 21\nny = 21")  # coarsened twice by 1.5
+
+
+def _fake(monkeypatch, ic: str, allowance: float = 0.3) -> None:
+    """ic: the fake ``ic`` with an estimate of 0.01 s, factor 1; every run may spend
+    ``allowance`` seconds of CPU time beyond it; the watchdog looks every 0.05 s and
+    calls a run hung after 1 s under 1 % of a core."""
+    fakes.use(monkeypatch, ic=ic, analytic="solve_exact")
+    monkeypatch.setitem(solvers.REGISTRY, "ic", replace(solvers.REGISTRY["ic"],
+                                                        estimate_attr="estimate_tiny"))
+    monkeypatch.setattr(deadline, "ALLOWANCE_S", allowance)
+    monkeypatch.setattr(deadline, "TICK_S", 0.05)
+    monkeypatch.setattr(deadline, "STALL_S", 1.0)
 
 
 @pytest.fixture
 def slow(monkeypatch):
-    """ic: a fake that sleeps FAKE_SLEEP seconds with an estimate of 0.01 s, factor 1;
-    every run may take 0.3 s beyond its estimate."""
-    fakes.use(monkeypatch, ic="solve_slow", analytic="solve_exact")
-    monkeypatch.setitem(solvers.REGISTRY, "ic", replace(solvers.REGISTRY["ic"],
-                                                        estimate_attr="estimate_tiny"))
-    monkeypatch.setattr(deadline, "ALLOWANCE_S", 0.3)
+    """A fake ic that computes for FAKE_SLEEP = 30 s of CPU time."""
+    _fake(monkeypatch, "solve_busy")
     monkeypatch.setenv("FAKE_SLEEP", "30")
 
 
@@ -50,7 +61,43 @@ def test_a_run_past_its_deadline_is_stopped(tmp_path, capsys, slow, command):
                          str(tmp_path / "o")], capsys)
     assert time.perf_counter() - t0 < 10.0  # stopped, not slept out (30 s per run)
     assert code == 1, err
-    assert STOPPED in err and "0.31 s" in err, err
+    budget = deadline.seconds(0.01, 1.0)  # 0.3 s + 0.01 s x max(cores, 2)
+    assert STOPPED in err and f"{budget:.3g} s of CPU time" in err, err
+
+
+@pytest.mark.parametrize("command", [
+    ["run", "{case}"],
+    ["sweep", "{case}", "--param", "grid.nx=21,23", "--workers", "0"],
+])
+def test_a_hung_run_is_stopped_and_says_so(tmp_path, capsys, monkeypatch, command):
+    """A solver that sleeps forever spends no CPU time: the watchdog stops it all the
+    same, after STALL_S of no progress."""
+    _fake(monkeypatch, "solve_slow")
+    monkeypatch.setenv("FAKE_SLEEP", "1e6")
+    (tmp_path / "c.toml").write_text(CASE)
+    argv = [a.replace("{case}", str(tmp_path / "c.toml")) for a in command]
+    t0 = time.perf_counter()
+    code, err = _answer([*argv, "--solver", "ic,analytic", "--no-progress", "--out",
+                         str(tmp_path / "o")], capsys)
+    assert time.perf_counter() - t0 < 20.0
+    assert code == 1, err
+    assert HUNG in err and "stopped as hung" in err, err
+
+
+def test_a_slow_run_on_a_busy_machine_finishes(tmp_path, capsys, monkeypatch):
+    """Issue 59: a run that gets one part in eight of a core (a busy machine) takes eight
+    times its CPU time in wall time: past a wall-clock deadline, within its CPU budget,
+    and never mistaken for a hung one."""
+    _fake(monkeypatch, "solve_crowded", allowance=1.5)
+    monkeypatch.setenv("FAKE_SLEEP", "0.4")
+    monkeypatch.setenv("FAKE_STRETCH", "8")
+    (tmp_path / "c.toml").write_text(TINY)
+    t0 = time.perf_counter()
+    code, err = _answer(["run", str(tmp_path / "c.toml"), "--solver", "ic,analytic",
+                         "--no-progress", "--out", str(tmp_path / "o")], capsys)
+    wall = time.perf_counter() - t0
+    assert code == 0, err
+    assert wall > deadline.seconds(0.01, 1.0)  # a wall-clock deadline would have stopped it
 
 
 def test_a_threshold_past_its_deadline_is_a_failed_row(tmp_path, capsys, slow):
@@ -64,13 +111,13 @@ def test_a_threshold_past_its_deadline_is_a_failed_row(tmp_path, capsys, slow):
 
 
 def test_the_time_factor_scales_the_deadline(tmp_path, capsys, slow, monkeypatch):
-    monkeypatch.setenv("FAKE_SLEEP", "0.5")
+    monkeypatch.setenv("FAKE_SLEEP", "2")
     (tmp_path / "c.toml").write_text(TINY)
     argv = ["run", str(tmp_path / "c.toml"), "--solver", "ic,analytic", "--no-progress"]
     code, err = _answer([*argv, "--out", str(tmp_path / "o1")], capsys)
     assert code == 1 and STOPPED in err, err
-    code, err = _answer([*argv, "--out", str(tmp_path / "o2"), "--time-factor", "100"], capsys)
-    assert code == 0, err  # 0.3 s + 100 x 0.01 s
+    code, err = _answer([*argv, "--out", str(tmp_path / "o2"), "--time-factor", "1000"], capsys)
+    assert code == 0, err  # 0.3 s + 1000 x 0.01 s x max(cores, 2)
     code, err = _answer([*argv, "--out", str(tmp_path / "o3"), "--time-factor", "0"], capsys)
     assert code == 2 and "--time-factor must be a positive number" in err, err
 
@@ -86,6 +133,32 @@ def test_the_alarm_stops_a_computation_and_is_then_cleared():
     time.sleep(0.3)  # no alarm left behind
     with deadline.deadline(math.inf, "unlimited"):
         time.sleep(0.05)
+
+
+def test_a_block_without_progress_is_stopped(monkeypatch):
+    monkeypatch.setattr(deadline, "TICK_S", 0.05)
+    monkeypatch.setattr(deadline, "STALL_S", 0.5)
+    t0 = time.perf_counter()
+    with pytest.raises(deadline.Overrun, match="waiting made no progress: .* stopped as hung"):
+        with deadline.deadline(math.inf, "waiting"):
+            time.sleep(60)
+    assert time.perf_counter() - t0 < 5.0
+    with deadline.deadline(math.inf, "working"):  # computing is progress
+        x = np.ones(1000)
+        t0 = time.perf_counter()
+        while time.perf_counter() - t0 < 1.5:
+            x = np.sqrt(x * x)
+
+
+def test_the_budget_counts_cpu_time_not_wall_time(monkeypatch):
+    """Sleeping spends no budget; the budget is CPU time over the cores the estimate's
+    wall time may have used."""
+    monkeypatch.setattr(deadline, "TICK_S", 0.05)
+    with deadline.deadline(0.3, "sleeping"):
+        time.sleep(0.8)
+    d = deadline.seconds(1.0, 2.0, 3.0)
+    assert d == pytest.approx(deadline.ALLOWANCE_S
+                              + 6.0 * max(deadline.cores(), deadline.CALIBRATION_CORES))
 
 
 def test_no_alarm_outside_the_main_thread():

@@ -90,8 +90,9 @@ def build_parser() -> argparse.ArgumentParser:
                            help="wall time one solver run may take by its estimate "
                            "(default: 48)")
             p.add_argument("--time-factor", type=float, default=1.0, metavar="X",
-                           help="this machine's slowness against the estimates' (scales "
-                           "--max-hours checks and each run's deadline; default 1)")
+                           help="this processor's slowness against the estimates' "
+                           "(scales --max-hours checks and each run's CPU-time budget; "
+                           "a busy machine needs none; default 1)")
 
     run = sub.add_parser("run", help="run cases through the solvers")
     run.add_argument("cases", nargs="*", metavar="CASE", help="bundled case name or TOML path")

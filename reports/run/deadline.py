@@ -1,54 +1,141 @@
-"""The deadline of one solver run: no run goes on past its cost estimate by more than the
-estimate's calibration factor (:attr:`cases.result.Cost.time_factor`).
+"""The deadline of one solver run: it stops a hung run, never a slow one.
 
-A run of solver S on case C may take ``ALLOWANCE_S + slowdown · f · t`` seconds, t the
-solver's own estimate, f its calibration and ``slowdown`` the ``--time-factor`` of a
-slower or busier machine; past that it is stopped with :class:`Overrun`, a failure of
-that run naming the estimate.  The stop is an alarm signal, so it holds where runs are
-made in the main thread (``run``, ``sweep --workers 0``, ``threshold``); a Dask sweep
-waits on its tasks for the sum of their deadlines.
+A run is stopped for one of two reasons, both measured on the process's own CPU time
+(all its threads, and its child processes), which a busier machine does not inflate the
+way it inflates wall time:
+
+- **past its budget**: its CPU time exceeds ``ALLOWANCE_S + slowdown · f · t · c`` seconds,
+  t the solver's own estimate of the wall time on the calibration machine, f the estimate's
+  calibration (:attr:`cases.result.Cost.time_factor`), c = max(the cores this process may
+  use, ``CALIBRATION_CORES``) the threads that wall time may have been spent on, and
+  ``slowdown`` the ``--time-factor`` of a slower processor.  This stops a run that loops;
+- **no progress**: over ``STALL_S`` seconds of wall time it used less than
+  ``STALL_FRACTION`` of one core (a machine a hundred times busier still gives a runnable
+  process more).  This stops a run that waits forever (a deadlock, a sleep, a lost
+  sub-process), which spends no CPU time and so would never reach its budget.
+
+A watchdog thread measures both once a second and, when one is met, delivers one alarm
+signal to the main thread, which raises :class:`Overrun` naming the reason; so the stop
+holds where runs are made in the main thread (``run``, ``sweep --workers 0``,
+``threshold``).  A Dask sweep waits on its tasks for the sum of their budgets in wall time.
 """
 
 from __future__ import annotations
 
 import math
+import os
 import signal
 import threading
+import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-#: what every run may take beyond its estimate: imports, start-up, writing
+#: CPU time every run may take beyond its estimate: imports, start-up, writing
 ALLOWANCE_S = 30.0
+#: the cores of the machine the cost estimates were calibrated on (benchmarks/README.md)
+CALIBRATION_CORES = 2
+#: the wall-time window [s] over which a run must use at least STALL_FRACTION of a core
+STALL_S = 120.0
+STALL_FRACTION = 0.01
+#: how often [s] the watchdog looks
+TICK_S = 1.0
 
 
 class Overrun(RuntimeError):
-    """A run went on past its deadline."""
+    """A run went on past its deadline, or made no progress."""
+
+
+def cores() -> int:
+    """The cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):
+        return os.cpu_count() or 1
 
 
 def seconds(estimate_s: float, time_factor: float, slowdown: float = 1.0) -> float:
-    """The deadline [s] of a run estimated at ``estimate_s`` (inf when not calibrated)."""
-    limit = ALLOWANCE_S + slowdown * time_factor * estimate_s
+    """The CPU-time budget [s] of a run estimated at ``estimate_s`` of wall time (inf when
+    not calibrated)."""
+    limit = ALLOWANCE_S + slowdown * time_factor * estimate_s * max(cores(), CALIBRATION_CORES)
     return limit if math.isfinite(limit) else math.inf
+
+
+def cpu_seconds() -> float:
+    """CPU time [s] of this process (all threads) and of its live child processes."""
+    spent = time.process_time()
+    try:
+        import psutil
+
+        for child in psutil.Process().children(recursive=True):
+            try:
+                t = child.cpu_times()
+                spent += t.user + t.system
+            except psutil.Error:
+                pass
+    except ImportError:  # pragma: no cover - psutil comes with dask.distributed
+        pass
+    return spent
+
+
+class _Watch:
+    """The watchdog's state: the budget, the progress window, and why it stopped."""
+
+    def __init__(self, limit_s: float, what: str) -> None:
+        self.limit_s, self.what = limit_s, what
+        self.start = cpu_seconds()  # the watchdog thread's own time starts at 0
+        self.window = [(time.monotonic(), self.start)]
+        self.reason: str | None = None
+
+    def look(self) -> str | None:
+        """The reason to stop now, if any (called from the watchdog thread, whose own CPU
+        time is not the run's)."""
+        now, cpu = time.monotonic(), cpu_seconds() - time.thread_time()
+        if cpu - self.start > self.limit_s:
+            return (f"{self.what} ran past its deadline of {self.limit_s:.3g} s of CPU time "
+                    f"(its cost estimate times the estimate's calibration factor and the "
+                    f"cores, plus {ALLOWANCE_S:g} s); stopped (on a slower processor, "
+                    "raise --time-factor)")
+        self.window.append((now, cpu))
+        while len(self.window) > 1 and now - self.window[1][0] >= STALL_S:
+            self.window.pop(0)
+        t0, cpu0 = self.window[0]
+        if now - t0 >= STALL_S and cpu - cpu0 < STALL_FRACTION * (now - t0):
+            return (f"{self.what} made no progress: {cpu - cpu0:.3g} s of CPU time in the "
+                    f"last {now - t0:.3g} s (less than {STALL_FRACTION:.0%} of a core); "
+                    "stopped as hung")
+        return None
 
 
 @contextmanager
 def deadline(limit_s: float, what: str) -> Iterator[None]:
-    """Raise :class:`Overrun` in the block once it has run ``limit_s`` seconds (no limit
-    when infinite, or outside the main thread, where no alarm can be delivered)."""
-    if not math.isfinite(limit_s) or threading.current_thread() is not threading.main_thread():
+    """Raise :class:`Overrun` in the block once it has spent ``limit_s`` seconds of CPU
+    time or made no progress for ``STALL_S`` seconds (the budget is unlimited when
+    infinite; no watchdog outside the main thread, where no alarm can be delivered)."""
+    if threading.current_thread() is not threading.main_thread():
         yield
         return
+    watch = _Watch(limit_s, what)
+    done = threading.Event()
+    main = threading.main_thread().ident
+
+    def watchdog() -> None:
+        while not done.wait(TICK_S):
+            reason = watch.look()
+            if reason is not None:
+                watch.reason = reason
+                signal.pthread_kill(main, signal.SIGALRM)
+                return
 
     def alarm(signum: int, frame: object) -> None:
-        raise Overrun(f"{what} ran past its deadline of {limit_s:.3g} s (its cost estimate "
-                      "times the estimate's calibration factor, plus "
-                      f"{ALLOWANCE_S:g} s); stopped (on a slower or busier machine, "
-                      "raise --time-factor)")
+        if watch.reason is not None and not done.is_set():
+            raise Overrun(watch.reason)
 
     old = signal.signal(signal.SIGALRM, alarm)
-    signal.setitimer(signal.ITIMER_REAL, limit_s)
+    thread = threading.Thread(target=watchdog, name="deadline", daemon=True)
+    thread.start()
     try:
         yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0.0)
+        done.set()
+        thread.join()
         signal.signal(signal.SIGALRM, old)
