@@ -37,7 +37,10 @@ C_TRI = 0.405  # mean surface triangle area / size²
 BASE_BYTES = 250e6  # the CLI process: imports (140 MB), the mesh, earlier points' leftovers
 ASSEMBLY_BYTES_PER_TET = 55e3
 FACTOR_BYTES_PER_DOF = 290.0  # times n^(1/3)
-SCHUR_BLOCK = 512  # right-hand sides per partial solve (Factorization.schur_inverse)
+#: the condensation as fitted: one partial solve per column, SCHUR_BLOCK columns at a
+#: time; since the Schur-complement factorisation (issue 58) an upper bound in time and
+#: memory until the constants are refitted (benchmarks/README.md)
+SCHUR_BLOCK = 512
 DENSE_COPIES = 4  # m x m float64 arrays alive while C_rel, its factor and K_rel are formed
 
 SECONDS_BASE = 2.0  # start-up, imports and writing the results

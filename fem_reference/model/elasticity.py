@@ -179,10 +179,14 @@ class Factorization:
 
     PARDISO's symmetric positive-definite mode (mtype 2) on the upper triangle takes
     about half the time of the unsymmetric mode.  With ``partial`` (a boolean mask or
-    index array of unknowns) the factorisation also supports PARDISO's partial solve
-    (``iparm[30] = 1``): right-hand sides supported on those unknowns, solution
-    computed on them only — the condensation ``Sᵀ K⁻¹ S`` onto a few hundred or
-    thousand surface DOFs then costs a fraction of the full back-substitutions.
+    index array of unknowns s, the others i) the factorisation is PARDISO's Schur
+    complement one (``iparm[35] = 2``): the unknowns i are factorised and the Schur
+    complement ``S = A_ss − A_si A_ii⁻¹ A_is`` is returned dense, within about the time of
+    the plain factorisation.  Its inverse is the condensation ``C = Sᵀ A⁻¹ S = S⁻¹`` onto
+    the unknowns s (:meth:`schur_inverse`; block inversion of A), formed once by LAPACK's
+    Cholesky inverse instead of one partial solve per unknown s; a solve with A is then
+    PARDISO's forward substitution (phase 331), ``x_s = C y_s`` and its backward
+    substitution (phase 333).
     """
 
     def __init__(self, A: sp.spmatrix, partial: np.ndarray | None = None):
@@ -198,77 +202,90 @@ class Factorization:
         s.set_iparm(10, 8)  # pivot perturbation 1e-8
         s.set_iparm(11, 0)
         s.set_iparm(13, 0)
-        self.partial_index: np.ndarray | None = None
-        if partial is not None:
-            idx = np.asarray(partial)
-            idx = np.nonzero(idx)[0] if idx.dtype == bool else np.unique(idx)
-            s.perm = np.zeros(self.n, dtype=np.int32)
-            s.perm[idx] = 1
-            s.set_iparm(31, 1)
-            self.partial_index = idx
         self._solver = s
-        s.factorize(self._A)
-        s.set_iparm(31, 0)
+        self.partial_index: np.ndarray | None = None
+        self._C: np.ndarray | None = None
+        if partial is None:
+            s.factorize(self._A)
+            return
+        idx = np.asarray(partial)
+        idx = np.nonzero(idx)[0] if idx.dtype == bool else np.unique(idx)
+        s.perm = np.zeros(self.n, dtype=np.int32)
+        s.perm[idx] = 1
+        s.set_iparm(36, 2)  # Schur complement with the partial factorisation
+        S = np.zeros((idx.size, idx.size), order="F")
+        self._call(12, np.zeros(self.n), S.reshape(-1, order="F"))
+        self.partial_index = idx
+        self._C = _spd_inverse(S)
 
     def solve(self, b: np.ndarray, *, block: int = 256) -> np.ndarray:
         """Solve for one right-hand side (n,) or many (n, m), ``block`` columns at a time."""
         b = np.asarray(b, dtype=float)
-        if b.ndim == 1:
-            return self._solver.solve(self._A, b)
-        out = np.empty_like(b)
-        for start in range(0, b.shape[1], block):
-            sl = slice(start, start + block)
-            out[:, sl] = self._solver.solve(self._A, np.asfortranarray(b[:, sl]))
-        return out
-
-    def schur_inverse(self, *, block: int = 512) -> np.ndarray:
-        """``C = Sᵀ A⁻¹ S`` for the unit vectors S of the ``partial`` unknowns (dense)."""
-        if self.partial_index is None:
-            raise ValueError("factorisation was built without partial unknowns")
+        if self._C is None:
+            if b.ndim == 1:
+                return self._solver.solve(self._A, b)
+            out = np.empty_like(b)
+            for start in range(0, b.shape[1], block):
+                sl = slice(start, start + block)
+                out[:, sl] = self._solver.solve(self._A, np.asfortranarray(b[:, sl]))
+            return out
+        B = np.asfortranarray(b.reshape(self.n, -1))
+        Y = np.zeros_like(B)
+        self._call(331, B, Y)
         idx = self.partial_index
-        m = idx.size
-        C = np.empty((m, m))
-        self._solver.set_iparm(31, 1)
-        try:
-            for start in range(0, m, block):
-                cols = np.arange(start, min(start + block, m))
-                B = np.zeros((self.n, cols.size), order="F")
-                B[idx[cols], np.arange(cols.size)] = 1.0
-                C[:, cols] = self._solve_phase(B)[idx]
-        finally:
-            self._solver.set_iparm(31, 0)
-        return 0.5 * (C + C.T)
+        Y[idx] = self._C @ Y[idx]
+        X = np.zeros_like(Y)
+        self._call(333, Y, X)
+        return X.reshape(b.shape)
 
-    def _solve_phase(self, B: np.ndarray) -> np.ndarray:
-        """PARDISO's solve phase (33) on the kept factors for the Fortran-ordered
-        right-hand sides ``B`` (n, k); the solution in Fortran order.
+    def schur_inverse(self) -> np.ndarray:
+        """``C = Sᵀ A⁻¹ S`` for the unit vectors S of the ``partial`` unknowns (dense)."""
+        if self._C is None:
+            raise ValueError("factorisation was built without partial unknowns")
+        return self._C
 
-        pypardiso's ``solve`` returns a C-ordered copy of the whole (n, k) solution,
-        which for the condensation (only the rows of the partial unknowns are read)
-        costs a third of the time of the partial solves themselves; this calls MKL
-        with the solver's own handle instead, and falls back on ``solve`` where the
-        wrapper's internals differ.
-        """
+    def _call(self, phase: int, B: np.ndarray, X: np.ndarray) -> None:
+        """PARDISO phase ``phase`` on the kept handle with the Fortran-ordered right-hand
+        sides ``B`` (n, k) into ``X`` (for the Schur factorisation, X holds S)."""
         s = self._solver
-        call = getattr(s, "_mkl_pardiso", None)
-        if call is None or not hasattr(s, "pt") or not B.flags.f_contiguous:
-            return np.asfortranarray(s.solve(self._A, B))
-        s.set_iparm(12, 0)  # CSR, not transposed
-        x = np.zeros_like(B)
         error = ctypes.c_int32(0)
         i32, f64 = ctypes.POINTER(ctypes.c_int32), ctypes.POINTER(ctypes.c_double)
         one = ctypes.c_int32(1)
-        call(s.pt.ctypes.data_as(ctypes.POINTER(s._pt_type[0])), ctypes.byref(one),
-             ctypes.byref(one), ctypes.byref(ctypes.c_int32(s.mtype)),
-             ctypes.byref(ctypes.c_int32(33)), ctypes.byref(ctypes.c_int32(self.n)),
-             self._A.data.ctypes.data_as(f64), self._ia.ctypes.data_as(i32),
-             self._ja.ctypes.data_as(i32), s.perm.ctypes.data_as(i32),
-             ctypes.byref(ctypes.c_int32(B.shape[1])), s.iparm.ctypes.data_as(i32),
-             ctypes.byref(ctypes.c_int32(s.msglvl)), B.ctypes.data_as(f64),
-             x.ctypes.data_as(f64), ctypes.byref(error))
+        nrhs = 1 if B.ndim == 1 else B.shape[1]
+        s._mkl_pardiso(s.pt.ctypes.data_as(ctypes.POINTER(s._pt_type[0])), ctypes.byref(one),
+                       ctypes.byref(one), ctypes.byref(ctypes.c_int32(s.mtype)),
+                       ctypes.byref(ctypes.c_int32(phase)), ctypes.byref(ctypes.c_int32(self.n)),
+                       self._A.data.ctypes.data_as(f64), self._ia.ctypes.data_as(i32),
+                       self._ja.ctypes.data_as(i32), s.perm.ctypes.data_as(i32),
+                       ctypes.byref(ctypes.c_int32(nrhs)), s.iparm.ctypes.data_as(i32),
+                       ctypes.byref(ctypes.c_int32(s.msglvl)), B.ctypes.data_as(f64),
+                       X.ctypes.data_as(f64), ctypes.byref(error))
         if error.value != 0:
-            raise FemError(f"PARDISO's solve phase failed with error {error.value}")
-        return x
+            raise FemError(f"PARDISO's phase {phase} failed with error {error.value}")
 
     def free(self) -> None:
-        self._solver.free_memory(everything=True)
+        if self._C is None:
+            self._solver.free_memory(everything=True)
+        else:
+            self._call(-1, np.zeros(self.n), np.zeros(self.n))
+            self._C = None
+
+
+def _spd_inverse(S: np.ndarray) -> np.ndarray:
+    """The inverse of the SPD matrix ``S`` (Fortran order, overwritten) by LAPACK's
+    Cholesky factorisation and inverse (potrf, potri), symmetric."""
+    from scipy.linalg import lapack
+
+    c, info = lapack.dpotrf(S, lower=1, overwrite_a=1, clean=0)
+    if info != 0:
+        raise FemError(f"the condensed stiffness is not positive definite (potrf {info})")
+    C, info = lapack.dpotri(c, lower=1, overwrite_c=1)
+    if info != 0:
+        raise FemError(f"the condensed stiffness is singular (potri {info})")
+    m, b = C.shape[0], 512
+    for j0 in range(0, m, b):  # the upper triangle from the lower, a block at a time
+        j1 = min(j0 + b, m)
+        D = C[j0:j1, j0:j1]
+        C[j0:j1, j0:j1] = np.tril(D) + np.tril(D, -1).T
+        C[j0:j1, j1:] = C[j1:, j0:j1].T
+    return C
