@@ -28,14 +28,16 @@ __all__ = ["solve", "supports", "spec", "Spec"]
 
 
 def supports(case: Case, *, name: str) -> str | None:
-    """None: the case's ``[external.NAME]`` table is valid and every file it names reads,
-    with every mapped field and scalar (otherwise the CaseError names the key, the file
-    and the field).  Asked while the run is planned, so that a bad file replaces no
-    earlier result."""
+    """None: the case's ``[external.NAME]`` table is valid and every file it names gives
+    its output step: every mapped field and scalar, a contact surface and, where
+    stresses are mapped, a body that holds the case's stress planes (otherwise the
+    CaseError names the key, the file and the likely cause).  Asked while the run is
+    planned, so that a bad file replaces no earlier result: each file is read as the
+    run reads it (reading files costs little beside a solver)."""
     s = spec(case, name)
     rows = scalar_rows(s)
     for path, number in zip(s.files, s.steps, strict=True):
-        read(path, s, number, rows)
+        step_result(read(path, s, number, rows), case, s, number)
     return None
 
 

@@ -142,6 +142,9 @@ def read(path: Path, spec: Spec, number: int = 0,
         field_data = mesh.field_data
     if points.ndim != 2 or points.shape[1] < 3 or not np.isfinite(points).all():
         raise CaseError(f"{path}: the points must have three finite coordinates")
+    if points.shape[0] < 3:
+        raise CaseError(f"{path}: {points.shape[0]} point(s): a result file needs the "
+                        "points of a contact surface (a table with a header and no rows?)")
     xyz = np.column_stack([
         sign * (points[:, axis] - spec.origin[axis]) * spec.length
         for axis, sign in spec.axes])

@@ -157,22 +157,40 @@ def scalars(frame: Frame, surface: Surface, fields: dict[str, np.ndarray],
     return out
 
 
-def step_result(frame: Frame, case: Case, spec: Spec, number: int) -> StepResult:
-    """Output step ``number`` of ``case`` from ``frame`` (module doc)."""
+def _first_line(exc: BaseException) -> str:
+    """What an error says on its first line (Qhull's own dump follows it)."""
+    text = str(exc).strip()
+    return text.splitlines()[0] if text else type(exc).__name__
+
+
+def geometry(frame: Frame, spec: Spec) -> tuple[Surface, Volume | None]:
+    """The file's contact surface and, where stresses are mapped, the body's volume to
+    interpolate them in; CaseError naming the file, the key and the likely cause."""
     extent = float(np.ptp(frame.xyz[:, :2], axis=0).max()) or 1.0
+    where = f"external.{spec.name}"
     try:
         surface = Surface.of(frame.xyz, frame.cells, SURFACE_TOL * extent)
-    except ValueError as exc:
-        raise CaseError(f"{frame.path}: {exc} (external.{spec.name}.axes, origin)") from None
+    except (ValueError, QhullError) as exc:
+        raise CaseError(f"{frame.path}: no contact surface at depth 0 in the suite's frame "
+                        f"({_first_line(exc)}); check {where}.axes and {where}.origin"
+                        ) from None
+    if not any(c in frame.values for c in (*STRESS_COMPONENTS, "vm")):
+        return surface, None
+    try:
+        volume = Volume.of(frame.xyz, frame.cells)
+    except (ValueError, QhullError) as exc:  # e.g. stresses on surface points only
+        raise CaseError(f"{frame.path}: the stresses mapped in {where}.fields need points "
+                        "that fill the body below the surface, and these make no "
+                        f"tetrahedra ({_first_line(exc)}); map no stresses for a "
+                        f"surface-only file, or check {where}.axes") from None
+    return surface, volume
+
+
+def step_result(frame: Frame, case: Case, spec: Spec, number: int) -> StepResult:
+    """Output step ``number`` of ``case`` from ``frame`` (module doc)."""
+    surface, volume = geometry(frame, spec)
     fields = surface_fields(frame, surface, case, spec)
-    plane_set = {}
-    if any(c in frame.values for c in (*STRESS_COMPONENTS, "vm")):
-        try:
-            volume = Volume.of(frame.xyz, frame.cells)
-        except (ValueError, QhullError) as exc:  # e.g. stresses on surface points only
-            raise CaseError(f"{frame.path}: the stresses need points that fill the body "
-                            f"below the surface (no tetrahedra from them: {exc})") from None
-        plane_set = planes(frame, volume, case, spec)
+    plane_set = planes(frame, volume, case, spec) if volume is not None else {}
     values = scalars(frame, surface, fields, plane_set, case, spec)
     values["step"] = float(number)
     g = case.grid

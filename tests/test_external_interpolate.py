@@ -89,5 +89,6 @@ def test_stresses_on_surface_points_only_are_refused_with_the_file_named(tmp_pat
     case = load_point("hertz", quick=True)
     case = case.with_changes(source=str(tmp_path / "case.toml"), external={"flat": {
         "files": "flat.csv", "fields": {"p_n": "p", "vm": "s"}, "budget": {"default": 0.1}}})
-    with pytest.raises(CaseError, match=r"flat\.csv: the stresses need points that fill"):
+    with pytest.raises(CaseError, match=r"flat\.csv: the stresses mapped in "
+                       r"external\.flat\.fields need points that fill"):
         solve(case, name="flat")

@@ -283,3 +283,87 @@ def test_result_sets_come_first_by_name_whatever_the_order_named():
     for order in (["external:b", "ic", "external:a"], ["external:a", "external:b", "ic"]):
         chosen, _ = select_solvers(order, relations=False)
         assert chosen == ["external:a", "external:b", "ic"]
+
+
+def _scaled_copy(src: Path, dst: Path, factor: float) -> None:
+    mesh = meshio.read(src)
+    for k in mesh.point_data:
+        mesh.point_data[k] = mesh.point_data[k] * factor
+    meshio.write(dst, mesh)
+
+
+@pytest.mark.parametrize("files, steps", [
+    ('"wrong.vtu"', "[1]"),  # the one-step case has no step 1
+    ('["step_0000.vtu", "more_1.vtu", "more_2.vtu"]', None),  # two files beyond its steps
+], ids=["a-step-the-case-lacks", "files-beyond-its-steps"])
+def test_results_compared_with_nothing_fail_the_gate(fem_results, tmp_path, files, steps):
+    """Issue 59: a file mapped to a step that no other solver has (here 20 % and 5 % too
+    high) used to be stored and compared nowhere, and the gate passed: every step of
+    external results that no comparison reads is a gate problem, named."""
+    where = export(fem_results, "hertz", tmp_path) / "base"
+    base = where / "step_0000.vtu"
+    _scaled_copy(base, where / "wrong.vtu", 1.2)
+    _scaled_copy(base, where / "more_1.vtu", 1.05)
+    _scaled_copy(base, where / "more_2.vtu", 1.2)
+    case = external_case(where / "case.toml", "hertz", "fe", "step_0000.vtu",
+                         mirror='["x", "y"]', scalars=None, fields={"p_n": "p_n"})
+    table = f"files = {files}" + (f"\nsteps = {steps}" if steps else "")
+    case.write_text(case.read_text().replace('files = "step_0000.vtu"', table))
+    out = tmp_path / "out"
+    assert ext_run(case, "fe", out) == 0
+    code = main(["gate", str(out)])
+    assert code == 1
+    from reports.render.gate import uncompared_lines
+    from reports.store.results import scan
+
+    lines = [x for c in scan(out).complete for x in uncompared_lines(c)]
+    expected = {"case step 1"} if steps else {"case step 1", "case step 2"}
+    assert {x.split(":")[0].removeprefix("UNCOMPARED ") for x in lines} == expected, lines
+    assert all("external:fe" in x and "[external.fe]" in x for x in lines), lines
+
+
+def _surface_only(where: Path) -> str:
+    """The top surface's points alone, as a point cloud, with the stresses still there."""
+    m = meshio.read(where / "step_0000.vtu")
+    idx = np.flatnonzero(m.points[:, 2] > -1e-12)
+    meshio.write(where / "surface.vtu", meshio.Mesh(
+        m.points[idx], [("vertex", np.arange(idx.size)[:, None])],
+        point_data={k: v[idx] for k, v in m.point_data.items()}))
+    return 'files = "surface.vtu"'
+
+
+def _header_only(where: Path) -> str:
+    (where / "empty.csv").write_text("x,y,z,p_n\n")
+    return 'files = "empty.csv"'
+
+
+def _wrong_axes(where: Path) -> str:
+    return 'files = "step_0000.vtu"\naxes = ["x", "z", "-y"]'
+
+
+@pytest.mark.parametrize("make, needles", [
+    (_surface_only, ("surface.vtu", "external.fe.fields", "fill the body")),
+    (_header_only, ("empty.csv", "0 point(s)")),
+    (_wrong_axes, ("step_0000.vtu", "external.fe.axes", "outside its mesh")),
+], ids=["surface-only-with-stresses", "header-only-csv", "wrong-axes"])
+def test_unusable_files_are_refused_while_planning(fem_results, tmp_path, capsys, make,
+                                                    needles):
+    """Issue 59: a file without a usable surface or body for what is mapped used to fail
+    in the solve (Qhull's 40-line dump, or "did not converge: QH6154", the file and the
+    key unnamed, the case's earlier results deleted and a .partial folder left); it is
+    refused while the run is planned, naming the file, the key and the likely cause,
+    with Qhull's first line only, and the earlier results kept."""
+    where = export(fem_results, "hertz", tmp_path) / "base"
+    case = external_case(where / "case.toml", "hertz", "fe", "step_0000.vtu",
+                         mirror='["x", "y"]', scalars=None)
+    out = tmp_path / "out"
+    assert ext_run(case, "fe", out) == 0
+    kept = files_of(out, "case")
+    capsys.readouterr()
+    case.write_text(case.read_text().replace('files = "step_0000.vtu"', make(where)))
+    assert ext_run(case, "fe", out) == 2
+    err = capsys.readouterr().err
+    assert all(n in err for n in needles), err
+    assert "Traceback" not in err and len(err.splitlines()) <= 3, err
+    assert files_of(out, "case") == kept
+    assert not list(out.glob(".*partial*"))

@@ -244,6 +244,7 @@ REGISTRY.update({
         f"ic+{rel.name}", "halfspace", budget=relations.budget(rel, grid_budget),
         style={"color": "C2", "ls": "-", "marker": None, "lw": 0.8}, relation=rel,
         base="ic") for rel in relations.RELATIONS})
+_BUILTIN = frozenset(REGISTRY)
 #: the installed plugins (reports.registry.plugins) come first: every pair they are in
 #: has a built-in solver as its reference; one line per plugin left out, and why
 PLUGINS, PLUGIN_ERRORS = plugins.load(REGISTRY)
@@ -280,6 +281,12 @@ def _get(name: str) -> SolverRecord:
     if is_external(name):
         return external_record(name)
     raise KeyError(name)
+
+
+def builtin(name: str) -> bool:
+    """Whether ``name`` is one of this suite's own solvers (not a plugin, not external
+    results): by name, whatever is installed."""
+    return name in _BUILTIN
 
 
 def names() -> list[str]:

@@ -1,6 +1,7 @@
 """``contact-vv gate``: fail on any failed metric (``passed`` recomputed from value and
 tolerance; a recorded ``passed`` that disagrees is a problem too), case with no gated
-metric, non-converged run, incomplete or damaged case, naming each.
+metric, non-converged run, incomplete or damaged case, output step of a plugin or of
+external results that nothing compares, naming each.
 
 It prints, by default, the verdict and the counts on its first line, then every problem
 (a failed metric with its case, point, step, pair, quantity, metric, value, tolerance,
@@ -96,6 +97,32 @@ def ungated_lines(case: CaseResults) -> list[str]:
             f"not converged; {r.note}" for r in ungated(case.metrics).itertuples(index=False)]
 
 
+def uncompared_lines(case: CaseResults) -> list[str]:
+    """One ``UNCOMPARED …`` problem per output step of a solver not of this suite (a
+    plugin, external results) that no row of ``metrics.csv`` compares: results a user
+    named that would otherwise pass unread (a step the case does not have, a file
+    beyond its output steps)."""
+    summary, metrics = case.summary, case.metrics
+    if summary.empty or "solver" not in summary:
+        return []
+    compared: dict[str, set[str]] = {}
+    for r in metrics.itertuples(index=False) if "pair" in metrics else ():
+        a, _, b = str(r.pair).partition("-")
+        for name in (a, b):
+            compared.setdefault(name, set()).add(_where("", r.param, r.step))
+    lines = []
+    for r in summary.itertuples(index=False):
+        if solvers.builtin(r.solver) or _where("", r.param, r.step) in compared.get(
+                r.solver, set()):
+            continue
+        hint = (f"; [external.{r.solver.partition(':')[2]}] names a step or a file that "
+                "no other solver of the case has (its steps, its files)"
+                if solvers.is_external(r.solver) else "")
+        lines.append(f"UNCOMPARED {_where(case.name, r.param, r.step)}: solver "
+                     f"{r.solver}'s results are compared with nothing{hint}")
+    return lines
+
+
 def case_problems(results: Scan) -> list[str]:
     """One line per incomplete and per damaged case."""
     return ([f"INCOMPLETE {name}: {reason}" for name, reason in results.incomplete.items()]
@@ -123,6 +150,7 @@ def problems(results: Scan, report: Path | None = None) -> list[str]:
     lines = []
     for case in results.complete:
         lines += metric_problems(case, report)
+        lines += uncompared_lines(case)
         if not gated(case.metrics).any():
             lines.append(f"NO METRICS {case.name}: {case.path / METRICS} holds no gated "
                          f"comparison, so nothing in it is verified ({_second_hint(case)})")
