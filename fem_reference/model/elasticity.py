@@ -205,6 +205,7 @@ class Factorization:
         self._solver = s
         self.partial_index: np.ndarray | None = None
         self._C: np.ndarray | None = None
+        self.columns = 0  # right-hand sides solved (a work count)
         if partial is None:
             s.factorize(self._A)
             return
@@ -221,6 +222,7 @@ class Factorization:
     def solve(self, b: np.ndarray, *, block: int = 256) -> np.ndarray:
         """Solve for one right-hand side (n,) or many (n, m), ``block`` columns at a time."""
         b = np.asarray(b, dtype=float)
+        self.columns += 1 if b.ndim == 1 else b.shape[1]
         if self._C is None:
             if b.ndim == 1:
                 return self._solver.solve(self._A, b)
