@@ -131,11 +131,7 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
             sol, F = evaluate(zeta, (sol.p_x, sol.p_y), exact_tol)
             iters, exact, final = iters + sol.iterations, True, True
             continue
-        if (trial.iterations <= 1 and exact_tol <= lowest
-                and np.linalg.norm(F_new - F) <= ROUNDOFF * load
-                and np.linalg.norm(F) <= RESOLVED_FRACTION * load):
-            # the tightest solve returned its start, the same tractions to round-off at
-            # both shifts: the mismatch is what floating point resolves at this residual
+        if exact_tol <= lowest and _unresolved(trial, F, F_new, load):
             return sol, held + B @ zeta, iters, J
         if trial.iterations <= 1 and exact_tol > lowest:
             # the solve returned its start: the step is below what the tolerance resolves
@@ -151,6 +147,15 @@ def shift_for_resultant(solve: Solve, Q: np.ndarray, zeta: np.ndarray,
     raise ContactNotConverged(
         f"tangential load control did not converge: |Q - Q_target| = {np.linalg.norm(F):.3e} N "
         f"> {tol_Q:.3e} N (tangential solves to residual {exact_tol:.1e})")
+
+
+def _unresolved(trial: TangentialSolution, F: np.ndarray, F_new: np.ndarray,
+                load: float) -> bool:
+    """Whether the tightest solve returned its start, the same tractions to round-off at
+    both shifts, with the mismatch within RESOLVED_FRACTION P: what floating point
+    resolves at this residual (module doc)."""
+    return (trial.iterations <= 1 and np.linalg.norm(F_new - F) <= ROUNDOFF * load
+            and np.linalg.norm(F) <= RESOLVED_FRACTION * load)
 
 
 def _fd_jacobian(evaluate, zeta: np.ndarray, F: np.ndarray, sol: TangentialSolution,
