@@ -83,7 +83,7 @@ def _read_mesh(path: Path, spec: Spec):
 
     try:
         return meshio.read(path, file_format=spec.format)
-    except Exception as exc:  # meshio raises many kinds for a malformed file
+    except (Exception, SystemExit) as exc:  # meshio raises many kinds (and exits)
         raise CaseError(f"{path}: cannot read it as a mesh ({type(exc).__name__}: {exc})"
                         ) from None
 

@@ -125,6 +125,8 @@ def _files(value: Any, case: Case, key: str) -> tuple[Path, ...]:
         found = sorted(glob.glob(pattern)) if glob.has_magic(pattern) else [pattern]
         if not found or not Path(found[0]).exists():
             raise CaseError(f"{key}: no file {pattern}")
+        if folders := [p for p in found if Path(p).is_dir()]:
+            raise CaseError(f"{key}: {folders[0]} is a directory, not a result file")
         paths += [Path(p) for p in found]
     return tuple(paths)
 

@@ -83,6 +83,12 @@ def surface_fields(frame: Frame, surface: Surface, case: Case, spec: Spec
     q, signs = mirrored(np.column_stack([X.ravel(), Y.ravel(), np.zeros(X.size)]),
                         spec.mirror)
     inside, idx, w = surface.weights(q[:, :2])
+    if not inside.any():
+        where = f"external.{spec.name}"
+        raise CaseError(f"{frame.path}: its contact surface covers no point of the case's "
+                        f"grid (x {g.x[0]:g} to {g.x[-1]:g} mm, y {g.y[0]:g} to {g.y[-1]:g} "
+                        f"mm) in the suite's frame; check {where}.origin, {where}.axes and "
+                        f"{where}.length_unit")
     out = {}
     for name in ("p_n", "p_x", "p_y", "wear_a", "wear_b", "gap"):
         if name not in frame.values:
