@@ -5,6 +5,7 @@ writer as the solver computes them."""
 from __future__ import annotations
 
 import math
+import numbers
 import time
 import traceback
 from collections.abc import Callable, Iterable, Iterator
@@ -48,9 +49,21 @@ Executor = Callable[[CasePlan, list[tuple[int, str]], bool], Iterable[UnitOutcom
 FINITE_SCALARS = ("P", "contact_area", "p_max", "w_max", "wear_volume", "vm_max")
 
 
-def _check_finite(result: RunResult, solver: str) -> None:
-    """NaN or Inf in a numerical solver's fields or key scalars fails the run (Inf in any
-    solver's scalars too); a closed form may leave what it does not cover as NaN."""
+def _check_result(result: RunResult, solver: str, case: Case) -> None:
+    """A result is not trusted (a plugin's least of all): a scalar that is not a number,
+    or a surface field not on the case's grid, fails the run naming it; so does NaN or
+    Inf in a numerical solver's fields or key scalars (Inf in any solver's scalars too);
+    a closed form may leave what it does not cover as NaN."""
+    shape = (case.grid.nx, case.grid.ny)
+    for k, step in enumerate(result.steps):
+        for key, value in step.scalars.items():
+            if not isinstance(value, numbers.Real | np.number | np.bool_):
+                raise RuntimeError(f"scalar {key} = {value!r} at output step {k} is not a "
+                                   "number")
+        for name, arr in step.surface.items():
+            if np.shape(arr) != shape:
+                raise RuntimeError(f"surface {name} at output step {k} has the shape "
+                                   f"{np.shape(arr)}, not the case grid's {shape}")
     nan_allowed = solvers.record(solver).closed_form
     for k, step in enumerate(result.steps):
         for key, value in step.scalars.items():
@@ -98,7 +111,7 @@ def run_unit(fn: Callable[..., RunResult], case: Case, solver: str, index: int,
             result = fn(case, progress=progress, on_output=on_output)
         if not isinstance(result, RunResult) or not result.steps:
             raise RuntimeError(f"returned {type(result).__name__} without output steps")
-        _check_finite(result, solver)
+        _check_result(result, solver, case)
     except CaseError as exc:
         return UnitOutcome(index, solver, case.param, None, time.perf_counter() - t0,
                            error=str(exc), kind="case")
@@ -108,7 +121,7 @@ def run_unit(fn: Callable[..., RunResult], case: Case, solver: str, index: int,
     except RuntimeError as exc:
         return UnitOutcome(index, solver, case.param, None, time.perf_counter() - t0,
                            error=str(exc), kind="solver", detail=traceback.format_exc())
-    except Exception as exc:  # a bug in a solver: keep going with the other cases
+    except (Exception, SystemExit) as exc:  # a bug in a solver: keep going with the others
         return UnitOutcome(index, solver, case.param, None, time.perf_counter() - t0,
                            error=f"{type(exc).__name__}: {exc}", kind="internal",
                            detail=traceback.format_exc())
