@@ -226,3 +226,50 @@ def test_claim_12_says_what_the_probe_shows(quick):
     early = resolution_evidence(None, "fretting", "beta=90", step[1000.0])
     assert re.search(r"; resolution probe .*: P [\d.]+ % \(admitted\)", early), early
     assert re.search(r"wear_volume [\d.]+ % \(admitted\)", early), early
+
+
+#: the FEM's work on every quick point (issue 58; benchmarks/README.md, "Where the FEM's
+#: time goes on the quick points"): the block's free DOFs, the condensed contact DOFs
+#: and the Newton iterations summed over the output steps, measured 2026-11-28
+FEM_WORK = {
+    ("hertz", ""): (37710, 597, 12),
+    ("cattaneo_mindlin", "Qx=0.765"): (106019, 4910, 69),
+    ("cattaneo_mindlin", "Qx=1.53"): (106019, 4910, 74),
+    ("cattaneo_mindlin", "Qx=2.295"): (106019, 4910, 96),
+    ("sliding_friction", "mu=0.15"): (71250, 1166, 11),
+    ("sliding_friction", "mu=0.5"): (71250, 1166, 11),
+    ("pin_on_disk", "mu=0"): (47768, 1266, 19),
+    ("pin_on_disk", "mu=0.5"): (90711, 2514, 18),
+    ("pin_on_disk_orthotropic", "beta=0"): (90711, 2514, 18),
+    ("pin_on_disk_orthotropic", "beta=45"): (95200, 2667, 19),
+    ("fretting_orthotropic", "beta=0"): (57996, 4577, 119),
+    ("fretting_orthotropic", "beta=90"): (57996, 4577, 158),
+    ("fretting_orthotropic", "beta=60"): (108927, 9213, 123),
+    ("dissimilar", ""): (71250, 3449, 92),
+    ("fretting_isotropic", "amplitude=0.0014571"): (70732, 3449, 19),
+    ("fretting_isotropic", "amplitude=0.0043714"): (70724, 3371, 19),
+    ("spence", ""): (37710, 1741, 35),
+}
+
+
+def test_the_fems_work_on_every_quick_point(quick):
+    """Every quick FEM point at its measured size (exactly: the meshes are deterministic)
+    and Newton count (at most 10 % or 2 above the measurement: round-off moves a count),
+    so that a change of the FEM's work cannot land unseen."""
+    import json
+
+    seen = {}
+    for name in BUNDLED:
+        units = json.loads((quick / name / layout.MANIFEST).read_text())["units"]
+        summary = pd.read_csv(quick / name / layout.SUMMARY)
+        summary = summary.assign(param=summary["param"].astype(object).fillna(""))
+        for u in units:
+            if u["solver"] != "fem":
+                continue
+            its = int(summary[(summary.solver == "fem")
+                              & (summary.param == u["param"])]["iterations"].sum())
+            seen[(name, u["param"])] = (u["meta"]["dofs"], u["meta"]["surface_dofs"], its)
+    assert set(seen) == set(FEM_WORK)
+    for key, (dofs, m, its) in FEM_WORK.items():
+        assert seen[key][:2] == (dofs, m), key
+        assert seen[key][2] <= its + max(2, its // 10), (key, seen[key][2], its)
