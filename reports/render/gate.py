@@ -249,9 +249,11 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
     import sys
 
     from reports.render import baseline as bl
-    from reports.render.junit import write_junit
+    from reports.render.junit import check_path, write_junit
 
     stream = stream or sys.stdout
+    if junit is not None:
+        check_path(junit, out)
     results = scan(out)
     if results.empty:
         raise UserError(f"no results in {out} (run `contact-vv run` first)")

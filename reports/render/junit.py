@@ -19,6 +19,7 @@ from pathlib import Path
 import pandas as pd
 
 from cases.result import atomic_write_text
+from reports.registry.errors import UserError
 from reports.store.readers import gated
 from reports.store.results import CaseResults, Scan
 
@@ -94,6 +95,27 @@ def junit_tree(results: Scan, problems: list[str]) -> ET.ElementTree:
     for key in ("tests", "failures", "skipped", "errors"):
         root.set(key, str(sum(int(s.get(key)) for s in root)))
     return ET.ElementTree(root)
+
+
+def check_path(path: Path, out: Path) -> None:
+    """UserError unless ``--junit`` may write ``path``: a file name, not a directory, not
+    inside a case directory of the results directory ``out`` (the run's files only live
+    there), and, if it exists, a JUnit report already (nothing else is replaced)."""
+    path = Path(path)  # an empty name is the current directory
+    if path.is_dir():
+        raise UserError(f"--junit {path}: is a directory; name a file in it")
+    parent, root = path.resolve().parent, Path(out).resolve()
+    if parent != root and root in parent.parents or parent == root and path.name.startswith("."):
+        raise UserError(f"--junit {path}: lies in a case directory of {out}, which holds "
+                        "the run's own files only; write it elsewhere")
+    if path.exists():
+        try:
+            head = path.read_bytes()[:4096].decode("utf-8")
+        except (OSError, UnicodeDecodeError):
+            head = ""
+        if not (head.startswith("<?xml") and "<testsuites" in head):
+            raise UserError(f"--junit {path}: exists and is not a JUnit report; not "
+                            "replaced (name another file)")
 
 
 def write_junit(path: Path, results: Scan, problems: list[str]) -> Path:
