@@ -161,6 +161,17 @@ def test_the_budget_counts_cpu_time_not_wall_time(monkeypatch):
                               + 6.0 * max(deadline.cores(), deadline.CALIBRATION_CORES))
 
 
+def test_an_enclosing_deadline_still_stops_the_block(monkeypatch):
+    """The inner deadline's alarm hands an alarm that is not its own to the enclosing
+    one, so a nested run cannot swallow its caller's stop."""
+    monkeypatch.setattr(deadline, "TICK_S", 0.05)
+    with pytest.raises(deadline.Overrun, match="outer ran past its deadline"):
+        with deadline.deadline(0.2, "outer"), deadline.deadline(math.inf, "inner"):
+            x, t0 = np.ones(1000), time.perf_counter()
+            while time.perf_counter() - t0 < 20.0:  # swallowed: the block ends unstopped
+                x = np.sqrt(x * x)
+
+
 def test_no_alarm_outside_the_main_thread():
     errors = []
 

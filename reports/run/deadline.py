@@ -129,6 +129,8 @@ def deadline(limit_s: float, what: str) -> Iterator[None]:
     def alarm(signum: int, frame: object) -> None:
         if watch.reason is not None and not done.is_set():
             raise Overrun(watch.reason)
+        if callable(old):  # an enclosing deadline's alarm
+            old(signum, frame)
 
     old = signal.signal(signal.SIGALRM, alarm)
     thread = threading.Thread(target=watchdog, name="deadline", daemon=True)
