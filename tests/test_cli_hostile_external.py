@@ -159,33 +159,46 @@ PROBES = [
 ]
 
 
+def _run(tmp_path, capsys, table, fields, text=None, *, prepare=None) -> tuple[int, str]:
+    """``run`` of the case with ``table`` and ``fields`` and the file ``text`` (None: the
+    good one) into ``tmp_path/out`` (``prepare(out)`` first, if given)."""
+    (tmp_path / "surface.csv").write_text(GOOD if text is None else text,
+                                          encoding="latin-1")
+    (tmp_path / "c.toml").write_text(case_text(table, fields))
+    out = tmp_path / "out"
+    if prepare is not None:
+        prepare(out)
+    return _answer(["run", str(tmp_path / "c.toml"), "--solver", "external:fe,ic",
+                    "--no-progress", "--out", str(out)], capsys)
+
+
 def test_the_valid_table_runs(tmp_path, capsys, hang_guard):  # noqa: F811
-    (tmp_path / "surface.csv").write_text(GOOD)
-    (tmp_path / "c.toml").write_text(case_text(TABLE, FIELDS))
-    code, err = _answer(["run", str(tmp_path / "c.toml"), "--solver", "external:fe,ic",
-                         "--no-progress", "--out", str(tmp_path / "out")], capsys)
+    code, err = _run(tmp_path, capsys, TABLE, FIELDS)
     assert code == 0, err
+
+
+def _kept(out):
+    out.mkdir()
+    (out / "kept.txt").write_text("kept")  # a file the run did not create
 
 
 @pytest.mark.parametrize(("table", "fields", "text", "needle"),
                          [p[1:] for p in PROBES], ids=[p[0] for p in PROBES])
 def test_hostile_external_table(tmp_path, capsys, hang_guard, table, fields, text,  # noqa: F811
                                 needle):
-    (tmp_path / "surface.csv").write_text(GOOD if text is None else text,
-                                          encoding="latin-1")
-    (tmp_path / "c.toml").write_text(case_text(table, fields))
-    out = tmp_path / "out"
-    out.mkdir()
-    (out / "kept.txt").write_text("kept")  # a file the run did not create
-    before = sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*"))
-    code, err = _answer(["run", str(tmp_path / "c.toml"), "--solver", "external:fe,ic",
-                         "--no-progress", "--out", str(out)], capsys)
+    before = []
+
+    def prepare(out):
+        _kept(out)
+        before.extend(sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*")))
+
+    code, err = _run(tmp_path, capsys, table, fields, text, prepare=prepare)
     lines = [line for line in err.splitlines() if line.startswith("contact-vv: error:")]
     assert code == 2, err
     assert len(lines) == 1, err
     assert needle in lines[0], err
     assert sorted(p.relative_to(tmp_path) for p in tmp_path.rglob("*")) == before
-    assert (out / "kept.txt").read_text() == "kept"
+    assert (tmp_path / "out" / "kept.txt").read_text() == "kept"
 
 
 def test_a_file_in_the_wrong_unit_fails_the_gate(tmp_path, capsys, hang_guard):  # noqa: F811
@@ -193,12 +206,8 @@ def test_a_file_in_the_wrong_unit_fails_the_gate(tmp_path, capsys, hang_guard): 
     and the gate fails it on the load and the contact size (exit 1)."""
     from reports.cli import main
 
-    (tmp_path / "surface.csv").write_text(GOOD)
-    (tmp_path / "c.toml").write_text(case_text(_t(length_unit='"m"'), FIELDS))
-    out = tmp_path / "out"
-    code, err = _answer(["run", str(tmp_path / "c.toml"), "--solver", "external:fe,ic",
-                         "--no-progress", "--out", str(out)], capsys)
+    code, err = _run(tmp_path, capsys, _t(length_unit='"m"'), FIELDS)
     assert code == 0, err
-    assert main(["gate", "--out", str(out)]) == 1
+    assert main(["gate", "--out", str(tmp_path / "out")]) == 1
     err = capsys.readouterr().err
     assert "external:fe-ic P rel" in err and "external:fe-ic a_x cells" in err, err
