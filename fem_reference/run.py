@@ -89,7 +89,8 @@ def start_run(model: FemModel) -> Run:
                locator=PointLocator(model.space),
                u=u, delta=delta, D=np.zeros(2),
                lin=None if semismooth else StiffenedSolver(model.Crel),
-               op=NodalCompliance.build(model.Crel, nodes.G, nodes.w) if semismooth else None,
+               op=NodalCompliance.build(model.Crel, nodes.G, nodes.w, nodes.h)
+               if semismooth else None,
                **dict(zip(("compliance", "compliance_t"),
                           far_compliance(model, nodes, G_all), strict=True)))
 

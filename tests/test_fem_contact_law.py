@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 import scipy.sparse as sp
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from cases.model import Body, Friction
@@ -344,3 +344,101 @@ def test_the_block_triangular_solve_on_generated_paths(mu1, mu2, beta, approach,
                                                        angle):
     """The same on generated friction ellipses, approaches, amplitudes and directions."""
     _block_and_whole(mu1, mu2, beta, approach, amplitude, angle)
+
+
+@settings(max_examples=10, derandomize=True, deadline=None, database=None)
+@given(mu1=st.floats(0.15, 0.8), mu2=st.floats(0.15, 0.8), beta=st.floats(0.0, 180.0),
+       angle=st.floats(0.0, 360.0), wear=st.floats(0.2, 3.0), coupled=st.booleans())
+def test_the_newton_step_is_the_derivative_of_the_functions(mu1, mu2, beta, angle, wear,
+                                                           coupled):
+    """The semi-smooth Newton increment Δ solves J Δ = −F with J the derivative of the
+    Alart–Curnier functions (:mod:`fem_reference.contact.semismooth`) on the sets of the
+    state: along it, by finite differences, dF/dt = −F (and likewise the control
+    equations).  Checked from a converged partial-slip state taken to a new shift with
+    a wear compliance c_w of the order of the nodal compliance (the corrector solves of
+    :mod:`fem_reference.fretting`), so that stick, slip and wear terms all enter;
+    identical (decoupled, block-triangular solve) and different materials."""
+    from fem_reference.contact.alart_curnier import State, laws, problem
+    from fem_reference.contact.augmented import Control
+    from fem_reference.contact.compliance import NodalCompliance
+    from fem_reference.contact.kept_factors import KeptFactors
+    from fem_reference.contact.newton_system import newton_step
+    from fem_reference.contact.semismooth import _update, semismooth
+
+    rng = np.random.default_rng(5)
+    g = np.linspace(-0.4, 0.4, 9)
+    xy = np.array([(x, y) for x in g for y in g])
+    n = len(xy)
+    G, w = sp.identity(3 * n, format="csr"), np.full(n, 0.01)
+    Rz = np.r_[np.ones(2 * n), -np.ones(n)]
+    C1 = _block_compliance(xy, 0.5, rng)
+    other = _block_compliance(xy, 0.3, rng) if coupled else C1
+    op = NodalCompliance.build(Rz[:, None] * C1 * Rz[None, :] + other, G, w,
+                               (xy**2).sum(axis=1))
+    assert op.decoupled != coupled
+    law = Law(k_n=1.0, mode="friction", k_t=1.0, M2=axes_tensor(mu1**2, mu2**2, beta),
+              M2inv=axes_tensor(mu1**-2, mu2**-2, beta))
+    e = np.array([math.cos(math.radians(angle)), math.sin(math.radians(angle))])
+    pts = Points(G=G, w=w, xy=xy, h=(xy**2).sum(axis=1) / 20.0, inside=np.ones(n, bool))
+
+    def control(shift: float) -> Control:
+        return Control(P=None, delta=1.5e-2, D=np.zeros(2), approach=1.5e-2,
+                       compliance=1e-5, shift=tuple(shift * e), compliance_t=1e-5)
+
+    sol = semismooth(op, law, pts, control(1e-3))
+    pts.gt_old = sol.ev.gt.copy()
+    cw = wear * float(op.diagonal()[2].mean())  # [mm/MPa], the nodal compliance's size
+    # the start of a step of the fretting path: the rigid shift moved, the tractions not
+    # (the first step back that leaves both stick and slip nodes)
+    for back in (3e-4, 1e-4, 6e-4, 2e-5):
+        p = problem(op, law, pts, control(1e-3 - back), cw, 1e-9)
+        s = State(lam=np.vstack([pts.t_old.T, pts.lam_n[None, :]]), delta=sol.delta,
+                  D=np.array(sol.D, dtype=float) - back * e)
+        L = laws(p, s)
+        if L.stick.any() and L.slip.any():
+            break
+    assume(L.stick.any() and L.slip.any())
+    dlam, dx = newton_step(p, s, L, KeptFactors())
+    eps = 1e-7
+    Lt = laws(p, _update(p, s, dlam, dx, eps))
+    assert np.array_equal(Lt.active, L.active) and np.array_equal(Lt.stick, L.stick)
+    # F is linear in the unknowns but for the slip projection: the difference quotient
+    # is the derivative to O(eps |Δ|) relative
+    scale = float(np.abs(L.F).max())
+    assert np.abs((Lt.F - L.F) / eps + L.F).max() <= 1e-5 * scale
+    # the controls are linear: their quotient is exact but for round-off of values of
+    # the approach's size (1.5e-2 mm) over eps
+    assert np.abs((Lt.Fe - L.Fe) / eps + L.Fe).max() <= 1e-6 * 1.5e-2
+
+
+@settings(max_examples=10, derandomize=True, deadline=None, database=None)
+@given(seed=st.integers(0, 2**31 - 1), coupled=st.booleans(), loaded=st.floats(0.0, 1.0))
+def test_the_nodal_compliance_in_touch_order_is_the_dense_one(seed, coupled, loaded):
+    """:class:`NodalCompliance` keeps ``HW = G C Gᵀ W`` with its nodes in touch order and
+    reads only the loaded columns: its products, blocks, cross blocks and diagonal equal
+    the dense matrix's in the nodes' own order (a random profile, tractions on a random
+    subset of the nodes, coupled or decoupled materials), to round-off."""
+    from fem_reference.contact.compliance import NodalCompliance
+
+    rng = np.random.default_rng(seed)
+    xy = rng.uniform(-0.5, 0.5, (30, 2))
+    n = len(xy)
+    G = sp.identity(3 * n, format="csr")
+    if coupled:  # and points that mix the condensed DOFs
+        G = G + sp.random(3 * n, 3 * n, density=0.05, random_state=rng, format="csr")
+    w = rng.uniform(0.5, 2.0, n)
+    Rz = np.r_[np.ones(2 * n), -np.ones(n)]
+    C1 = _block_compliance(xy, 0.5, rng)
+    C = Rz[:, None] * C1 * Rz[None, :] + (_block_compliance(xy, 0.3, rng) if coupled else C1)
+    op = NodalCompliance.build(C, G, w, rng.uniform(0.0, 1.0, n))
+    assert op.decoupled != coupled
+    HW = (G @ C @ G.T.toarray()) * np.tile(w, 3)[None, :]
+    lam = rng.standard_normal((3, n)) * (rng.uniform(0, 1, n) < loaded)
+    scale = np.abs(HW).max() * np.abs(lam).sum()
+    assert np.abs(op.apply(lam) - (HW @ lam.ravel()).reshape(3, n)).max() <= 1e-13 * scale
+    cols = np.sort(rng.choice(3 * n, 40, replace=False))
+    rows = rng.choice(3 * n, 17, replace=False)
+    top = 1e-15 * np.abs(HW).max()  # G C Gᵀ summed in another order
+    assert np.abs(op.cross(rows, cols) - HW[np.ix_(rows, cols)]).max() <= top
+    assert np.abs(op.diagonal() - np.diag(HW).reshape(3, n)).max() <= top
+    assert np.abs(op.block(cols) - HW[np.ix_(cols, cols)]).max() <= top

@@ -42,7 +42,7 @@ def problem(op: NodalCompliance, law: Law, pts: Points, ctrl: Control,
     n = pts.n
     cw = np.broadcast_to(np.asarray(cw, dtype=float), (n,)).copy()
     extra = unknowns(ctrl)
-    diag = np.diag(op.HW).reshape(3, n)  # self-compliance of each node [mm/MPa]
+    diag = op.diagonal()  # self-compliance of each node [mm/MPa]
     # components the surface cannot move (tangential on a symmetry plane, or every
     # tangential one of a model without tangential coupling): a stick condition
     # there holds whatever the traction, which symmetry sets to 0
@@ -133,14 +133,8 @@ def laws(p: Problem, s: State) -> Laws:
 
 
 def displacements(p: Problem, lam: np.ndarray) -> np.ndarray:
-    """``HW λ`` (3, n); decoupled: the normal and tangential blocks alone."""
-    HW, n = p.op.HW, p.pts.n
-    if not p.op.decoupled:
-        return (HW @ lam.ravel()).reshape(3, n)
-    d = np.empty_like(lam)
-    d[:2] = (HW[:2 * n, :2 * n] @ lam[:2].ravel()).reshape(2, n)
-    d[2] = HW[2 * n:, 2 * n:] @ lam[2]
-    return d
+    """``HW λ`` (3, n) (:meth:`NodalCompliance.apply`)."""
+    return p.op.apply(lam)
 
 
 def merit(p: Problem, s: State, L: Laws) -> float:
