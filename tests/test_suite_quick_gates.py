@@ -230,22 +230,23 @@ def test_claim_12_says_what_the_probe_shows(quick):
 
 #: the FEM's work on every quick point (issue 58; benchmarks/README.md, "Where the FEM's
 #: time goes on the quick points"): the block's free DOFs, the condensed contact DOFs
-#: and the Newton iterations summed over the output steps, measured 2026-11-28
+#: and the Newton iterations summed over the output steps, measured 2026-11-29 (af655be;
+#: the fretting points' and dissimilar's counts at c6322c0, 119, 158, 123 and 92, fail it)
 FEM_WORK = {
     ("hertz", ""): (37710, 597, 12),
-    ("cattaneo_mindlin", "Qx=0.765"): (106019, 4910, 69),
-    ("cattaneo_mindlin", "Qx=1.53"): (106019, 4910, 74),
-    ("cattaneo_mindlin", "Qx=2.295"): (106019, 4910, 96),
+    ("cattaneo_mindlin", "Qx=0.765"): (106019, 4910, 70),
+    ("cattaneo_mindlin", "Qx=1.53"): (106019, 4910, 75),
+    ("cattaneo_mindlin", "Qx=2.295"): (106019, 4910, 93),
     ("sliding_friction", "mu=0.15"): (71250, 1166, 11),
     ("sliding_friction", "mu=0.5"): (71250, 1166, 11),
     ("pin_on_disk", "mu=0"): (47768, 1266, 19),
     ("pin_on_disk", "mu=0.5"): (90711, 2514, 18),
     ("pin_on_disk_orthotropic", "beta=0"): (90711, 2514, 18),
     ("pin_on_disk_orthotropic", "beta=45"): (95200, 2667, 19),
-    ("fretting_orthotropic", "beta=0"): (57996, 4577, 119),
-    ("fretting_orthotropic", "beta=90"): (57996, 4577, 158),
-    ("fretting_orthotropic", "beta=60"): (108927, 9213, 123),
-    ("dissimilar", ""): (71250, 3449, 92),
+    ("fretting_orthotropic", "beta=0"): (57996, 4577, 107),
+    ("fretting_orthotropic", "beta=90"): (57996, 4577, 130),
+    ("fretting_orthotropic", "beta=60"): (108927, 9213, 105),
+    ("dissimilar", ""): (71250, 3449, 83),
     ("fretting_isotropic", "amplitude=0.0014571"): (70732, 3449, 19),
     ("fretting_isotropic", "amplitude=0.0043714"): (70724, 3371, 19),
     ("spence", ""): (37710, 1741, 35),
