@@ -41,8 +41,9 @@ def _wrap(owner, name: str, stage: str, clock: dict, counts: dict) -> None:
     setattr(owner, name, timed)
 
 
-def measure(spec: str) -> dict:
-    """One point, in this process: stage times [s], counts and the peak RSS [MB]."""
+def measure(spec: str, overrides: dict | None = None) -> dict:
+    """One point, in this process: stage times [s], counts and the peak RSS [MB]
+    (``overrides``: dotted case keys, as ``--set``)."""
     import fem_reference.loading as loading
     import fem_reference.model.block as block
     import fem_reference.model.elasticity as elasticity
@@ -71,7 +72,7 @@ def measure(spec: str) -> dict:
 
         setattr(loading, name, solved)
     name, _, index = spec.partition(":")
-    case = load_case(name, quick=True)[int(index or 0)]
+    case = load_case(name, quick=True, overrides=overrides or {})[int(index or 0)]
     t0 = time.perf_counter()
     result = solver.solve(case, vtu=False)
     wall = time.perf_counter() - t0
@@ -97,10 +98,24 @@ def fem_points() -> list[str]:
             and solvers.not_by_default("fem", case) is None]
 
 
+def _overrides(pairs: list[str]) -> dict:
+    """``KEY=VALUE`` pairs as case overrides (a number where the value reads as one)."""
+    out = {}
+    for kv in pairs:
+        key, _, text = kv.partition("=")
+        try:
+            out[key] = float(text)
+        except ValueError:
+            out[key] = text
+    return out
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--case", nargs="*", help="CASE:INDEX, quick set-up (default: all)")
     ap.add_argument("--threads", type=int, default=None, help="BLAS/PARDISO threads")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="a dotted case key for every point, e.g. fem.contact=augmented")
     ap.add_argument("--one", help=argparse.SUPPRESS)  # the child process
     args = ap.parse_args()
     if args.one:
@@ -108,11 +123,12 @@ def main() -> None:
             from threadpoolctl import threadpool_limits
 
             threadpool_limits(args.threads)
-        print(json.dumps(measure(args.one)))
+        print(json.dumps(measure(args.one, _overrides(args.set))))
         return
     rows = []
     for spec in args.case or fem_points():
-        cmd = [sys.executable, __file__, "--one", spec]
+        cmd = [sys.executable, __file__, "--one", spec,
+               *(x for kv in args.set for x in ("--set", kv))]
         if args.threads:
             cmd += ["--threads", str(args.threads)]
         out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout

@@ -320,3 +320,16 @@ def test_the_fretting_sources_run_the_fem_on_request(tmp_path):
             fretting = p.points[0].kind == "fretting"
             assert ("fem" in p.solvers) == (fretting_fem or not fretting), p.name
     assert named.seconds > default.seconds
+
+
+def test_the_quick_articles_thresholds_pass_their_gate(quick):
+    """The thresholds the quick article bisects (ic and the closed form on two grids, the
+    exact roots) pass the gate of ``thresholds.csv``
+    (:mod:`reports.render.threshold_gate`): no false alarm on the suite's own table, and
+    every comparison gated (both grids of every solver)."""
+    from reports.render.threshold_gate import threshold_gate
+
+    out, _ = quick
+    found, notes, n = threshold_gate(out)
+    assert found == [] and notes == [], found + notes
+    assert n > 0

@@ -157,7 +157,7 @@ def test_results_the_baseline_does_not_hold_fail(world, capsys, damage):
     ("\x00\x01\x02", ""),
     (None, ""),  # a valid table, one threshold made a word
 ])
-def test_report_fails_on_a_damaged_threshold_table(world, capsys, text, needle):
+def test_report_and_gate_fail_on_a_damaged_threshold_table(world, capsys, text, needle):
     from reports.cli import main
 
     table = world / "res" / layout.THRESHOLDS
@@ -177,6 +177,9 @@ def test_report_fails_on_a_damaged_threshold_table(world, capsys, text, needle):
     assert f"DAMAGED {layout.THRESHOLDS}" in err and needle in err, err
     assert table.read_bytes() == before
     assert (world / "res" / layout.REPORT).exists()  # written, showing the damage
+    code, err = _answer(["gate", "--out", str(world / "res")], capsys)  # and gated
+    assert code == 1 and f"DAMAGED {layout.THRESHOLDS}" in err and needle in err, err
+    assert table.read_bytes() == before
 
 
 @pytest.mark.parametrize("quick", [False, True], ids=["article-size", "quick"])

@@ -1,7 +1,9 @@
 """``contact-vv gate``: fail on any failed metric (``passed`` recomputed from value and
 tolerance; a recorded ``passed`` that disagrees is a problem too), case with no gated
 metric, non-converged run, incomplete or damaged case, output step of a plugin or of
-external results that nothing compares, naming each.
+external results that nothing compares, and threshold of ``thresholds.csv`` that is not a
+bracket or disagrees with the exact one or another solver's
+(:mod:`reports.render.threshold_gate`), naming each.
 
 It prints, by default, the verdict and the counts on its first line, then every problem
 (a failed metric with its case, point, step, pair, quantity, metric, value, tolerance,
@@ -27,7 +29,8 @@ from reports.compare.metrics import KINK_NOTE
 from reports.registry import solvers
 from reports.registry.errors import RunFailed, UserError
 from reports.registry.tolerances import UNCERTAINTY
-from reports.store.layout import METRICS
+from reports.render.threshold_gate import threshold_gate
+from reports.store.layout import METRICS, THRESHOLDS
 from reports.store.readers import gated, ungated
 from reports.store.results import CaseResults, Scan, not_converged, scan
 from reports.studies import probe
@@ -255,10 +258,12 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
     if junit is not None:
         check_path(junit, out)
     results = scan(out)
-    if results.empty:
+    if results.empty and not (Path(out) / THRESHOLDS).exists():
         raise UserError(f"no results in {out} (run `contact-vv run` first)")
     index = Path(out) / "index.html"
     found = problems(results, index if index.exists() else None)
+    t_found, t_notes, t_gated = threshold_gate(out)
+    found += t_found
     table = metrics_table(results)
     if update_baseline is not None:
         if results.incomplete or results.damaged:
@@ -272,12 +277,16 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
                           else drift_tol)
     lines = [headline(results, table, found), *found]
     lines += [case_line(case) for case in results.complete]
+    if t_gated or t_found or t_notes:
+        lines.append(f"  {THRESHOLDS}: {t_gated - sum(x.startswith('FAIL ') for x in t_found)}"
+                     f"/{t_gated} threshold comparison(s) passed"
+                     + (f", {len(t_notes)} not gated" if t_notes else ""))
     lines += [w for case in results.complete for w in _warnings(case)]
     if verbose:
         with pd.option_context("display.max_rows", None, "display.width", 200,
                                "display.max_colwidth", 40):
             lines.append(table.to_string(index=False) if not table.empty else "(no metrics)")
-        lines += [n for case in results.complete for n in _verbose_notes(case)]
+        lines += [n for case in results.complete for n in _verbose_notes(case)] + t_notes
     else:
         lines.append("(--verbose: every metric row, not-gated row and study note)")
     print("\n".join(lines), file=stream)

@@ -31,6 +31,7 @@ from reports.render.gate import metrics_table, problems
 from reports.render.html import case_section
 from reports.render.html_blocks import CSS
 from reports.render.html_sections import thresholds_html
+from reports.render.threshold_gate import threshold_gate
 from reports.store import layout
 from reports.store.readers import gated
 from reports.store.results import CaseResults, Scan, not_converged, scan
@@ -165,7 +166,7 @@ def render_index(results: Scan, out: Path, rows: list[CaseRow]) -> str:
     """The index page (module doc)."""
     from reports.store.manifest import provenance
 
-    found = problems(results)
+    found = problems(results) + threshold_gate(out)[0]
     table = metrics_table(results)
     n_on = int(gated(table).sum()) if not table.empty else 0
     off = f", {len(table) - n_on} not converged and not gated" if n_on < len(table) else ""
@@ -178,16 +179,7 @@ def render_index(results: Scan, out: Path, rows: list[CaseRow]) -> str:
 
 def _thresholds_problem(out: Path) -> list[str]:
     """One line if ``out/thresholds.csv`` exists and cannot be read."""
-    from reports.store.readers import DamagedResult, read_result, read_thresholds
-
-    path = out / layout.THRESHOLDS
-    if not (path.exists() or path.is_symlink()):
-        return []
-    try:
-        read_result(path, read_thresholds)
-    except DamagedResult as exc:
-        return [f"DAMAGED {layout.THRESHOLDS}: {exc}"]
-    return []
+    return [line for line in threshold_gate(out)[0] if line.startswith("DAMAGED")]
 
 
 def write_report(out: Path) -> Path:
