@@ -16,6 +16,9 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
+#: rows of G C Gᵀ formed at a time by :meth:`NodalCompliance.build`
+BLOCK = 512
+
 
 @dataclass(frozen=True)
 class NodalCompliance:
@@ -42,7 +45,15 @@ class NodalCompliance:
         order = np.arange(n) if h is None else np.argsort(h, kind="stable")
         flat = np.concatenate([order + c * n for c in range(3)])
         Gt = G[flat]  # the points' rows in touch order
-        H = np.asarray(Gt @ np.asarray(Gt @ C).T).T  # G C Gᵀ in touch order
+        # G C Gᵀ in touch order, column-major, its rows formed BLOCK at a time: the
+        # dense product G C is never whole (one more matrix of the compliance's size);
+        # C is exactly symmetric, so a Fortran-ordered C is read as its C-ordered
+        # transpose (a sparse product would copy it at every block)
+        Cc = C.T if C.flags.f_contiguous and not C.flags.c_contiguous else C
+        H = np.empty((Gt.shape[0], Gt.shape[0]), order="F")
+        for start in range(0, Gt.shape[0], BLOCK):
+            rows = slice(start, start + BLOCK)
+            H[rows] = np.asarray(Gt @ np.asarray(Gt[rows] @ Cc).T).T
         # identical materials (Dundurs' β = 0): the mirrored blocks' normal–tangential
         # compliances cancel in C_rel to the last bit, so H's coupling blocks are zero
         decoupled = H.shape[0] == 3 * n and not (H[2 * n:, :2 * n].any()
