@@ -1,0 +1,187 @@
+"""The gate's power against a foreign solver (issue 63, point 3): a solver plugin that
+wraps the half-space solver and applies one physical defect at a time — to the case it
+solves (a modulus, the friction or wear axes) or to the results it returns (tractions,
+parities, shifts, the wear of body b, the depth of a stress plane) — must fail the quick
+gate on a bundled case where the defect is physics, with ic and the closed forms as its
+references; the ones it does not yet see are listed with the measurement (:data:`GAPS`).
+The plugin is installed as pip would (a module and a ``.dist-info`` with the entry
+point) and is not one of the suite's own solvers: the gate judges it as it would a
+user's.  Its catch rate is in ``benchmarks/README.md`` beside the other error rates."""
+
+from __future__ import annotations
+
+import importlib
+import sys
+
+import pytest
+
+from reports.cli import main
+from reports.registry import plugins, solvers
+
+NAME = "foreign_ic"
+PLUGIN = '''"""A foreign solver for the gate's tests: the half-space solver with one defect."""
+import dataclasses
+import os
+
+import numpy as np
+
+import halfspace
+
+DEFECT = os.environ.get("CONTACT_VV_TEST_DEFECT", "none")
+
+
+def record():
+    from reports.registry.record import SolverRecord
+    from reports.registry.solvers import grid_budget, refine_grid
+
+    return SolverRecord("foreign_ic", __name__, budget=grid_budget, refine=refine_grid)
+
+
+def supports(case):
+    return halfspace.supports(case)
+
+
+def estimate(case):
+    return halfspace.estimate(case)
+
+
+def _case(case):
+    """The case the defective solver solves instead of ``case``."""
+    a, b, f = case.a, case.b, case.friction
+    if DEFECT == "E_b_from_a":
+        return case.with_changes(b=dataclasses.replace(b, E=a.E, nu=a.nu))
+    if DEFECT == "friction_axes_turned":
+        return case.with_changes(friction=dataclasses.replace(f, beta=f.beta + 20.0))
+    if DEFECT == "wear_axes_turned":
+        return case.with_changes(a=dataclasses.replace(a, i1=a.i2, i2=a.i1),
+                                 b=dataclasses.replace(b, i1=b.i2, i2=b.i1))
+    if DEFECT == "friction_scaled":
+        return case.with_changes(friction=dataclasses.replace(f, mu1=1.05 * f.mu1,
+                                                              mu2=1.05 * f.mu2))
+    return case
+
+
+def _step(step):
+    s = step.surface
+    if DEFECT == "traction_scaled":
+        for k in ("p_x", "p_y"):
+            s[k] = 1.03 * s[k]
+    elif DEFECT == "pressure_scaled":
+        s["p_n"] = 1.03 * s["p_n"]
+    elif DEFECT == "p_x_sign":
+        s["p_x"] = -s["p_x"]
+    elif DEFECT == "p_y_parity":
+        s["p_y"] = -s["p_y"][:, ::-1]
+    elif DEFECT in ("shift_one_cell_x", "shift_two_cells_y"):
+        axis, by = (0, 1) if DEFECT.endswith("x") else (1, 2)
+        for k in list(s):
+            s[k] = np.roll(s[k], by, axis=axis)
+    elif DEFECT == "wear_b_from_a":
+        s["wear_b"] = s["wear_a"].copy()
+    elif DEFECT == "plane_one_cell_deep":
+        for plane in step.planes.values():
+            for k, v in plane.fields.items():
+                plane.fields[k] = np.concatenate([v[:, 1:], v[:, -1:]], axis=1)
+    elif DEFECT == "vm_max_depth":
+        step.scalars["vm_max_z"] = 1.1 * step.scalars["vm_max_z"]
+    return step
+
+
+def solve(case, *, progress=False, on_output=None):
+    result = halfspace.solve(_case(case), progress=progress)
+    result.steps = [_step(s) for s in result.steps]
+    if on_output is not None:
+        for s in result.steps:
+            on_output(s)
+    return dataclasses.replace(result, case=case.name, solver="foreign_ic",
+                               param=case.param)
+'''
+
+#: defect -> (quick case, what is wrong)
+DEFECTS = {
+    "E_b_from_a": ("dissimilar", "body b's modulus and Poisson's ratio taken from body a"),
+    "friction_axes_turned": ("pin_on_disk_orthotropic", "the friction axes turned by 20°"),
+    "wear_axes_turned": ("pin_on_disk_orthotropic", "the wear axes turned by 90°"),
+    "friction_scaled": ("sliding_friction", "μ 5 % high"),
+    "traction_scaled": ("sliding_friction", "the tangential tractions 3 % high"),
+    "pressure_scaled": ("hertz", "the pressure field 3 % high (its scalars not)"),
+    "p_x_sign": ("sliding_friction", "p_x of the wrong sign"),
+    "p_y_parity": ("pin_on_disk_orthotropic", "p_y mirrored in y: the wrong parity"),
+    "shift_one_cell_x": ("hertz", "the surface fields one cell off in x"),
+    "shift_two_cells_y": ("hertz", "the surface fields two cells off in y"),
+    "wear_b_from_a": ("pin_on_disk_orthotropic", "body b's wear field that of body a"),
+    "plane_one_cell_deep": ("sliding_friction", "the stress planes read one cell deep"),
+    "vm_max_depth": ("hertz", "the reported depth of the σ_VM maximum 10 % deep"),
+}
+#: the defects the quick gate does not see, measured 2026-11-29 (issue 63: the holes to
+#: close), each with why: the test holds the catch rate to this table, so that a hole
+#: closed or opened is seen
+GAPS = {
+    "friction_scaled": "p_x l2 and max against the closed form are 5.8 % and 5.5 % with "
+                       "tolerances 9 % and 12 %: no metric checks the law p_t = μ p_n",
+    "traction_scaled": "the same metrics at 3 %",
+    "pressure_scaled": "P and p_max are the solver's scalars, not the field's: the field "
+                       "is only compared by its max (7 %) and its L2 norm, not gated at "
+                       "this grid",
+    "wear_b_from_a": "the wear_b rows measure 0.4-0.5 % against a 10 % tolerance",
+    "vm_max_depth": "the σ_VM maximum and its location are read from the planes; the "
+                    "scalar is compared nowhere",
+}
+
+
+@pytest.fixture
+def foreign(tmp_path, monkeypatch):
+    """The plugin installed (its module and .dist-info on the path) and the registry
+    loaded again as at import: the built-in records, then the plugins found."""
+    site = tmp_path / "site"
+    site.mkdir()
+    (site / f"{NAME}.py").write_text(PLUGIN)
+    info = site / f"{NAME}-0.1.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {NAME}\nVersion: 0.1\n")
+    (info / "entry_points.txt").write_text(f"[{plugins.GROUP}]\n{NAME} = {NAME}:record\n")
+    monkeypatch.syspath_prepend(str(site))
+    importlib.invalidate_caches()
+
+    def load(defect: str) -> None:
+        monkeypatch.setenv("CONTACT_VV_TEST_DEFECT", defect)
+        monkeypatch.delitem(sys.modules, NAME, raising=False)
+        builtin = {k: v for k, v in solvers.REGISTRY.items() if k not in solvers.PLUGINS}
+        found, errors = plugins.load(builtin)
+        assert errors == [] and NAME in found
+        monkeypatch.setattr(solvers, "REGISTRY", {**found, **builtin})
+        monkeypatch.setattr(solvers, "PLUGINS", found)
+    return load
+
+
+def _gate(case: str, tmp_path, capsys) -> tuple[int, list[str]]:
+    out = tmp_path / "res"
+    assert main(["run", case, "--quick", "--no-progress", "--solver",
+                 f"{NAME},ic,analytic", "--out", str(out)]) == 0
+    capsys.readouterr()
+    code = main(["gate", "--out", str(out)])
+    lines = capsys.readouterr().out.splitlines()
+    return code, [ln for ln in lines if ln.startswith("FAIL")]
+
+
+@pytest.mark.parametrize("case", sorted({c for c, _ in DEFECTS.values()}))
+def test_the_plugin_without_a_defect_passes(case, foreign, tmp_path, capsys):
+    """No false alarm: the wrapped solver as it is passes every case the defects use."""
+    foreign("none")
+    code, fails = _gate(case, tmp_path, capsys)
+    assert code == 0, fails
+
+
+@pytest.mark.parametrize("defect", list(DEFECTS))
+def test_the_quick_gates_catch_of_foreign_defects(defect, foreign, tmp_path, capsys):
+    """Every defect outside :data:`GAPS` fails the quick gate on a row of the plugin's
+    pairs (the suite's own ic-analytic rows unmoved); the defects in it pass, as
+    measured."""
+    case, why = DEFECTS[defect]
+    foreign(defect)
+    code, fails = _gate(case, tmp_path, capsys)
+    assert not any(" ic-analytic " in f for f in fails)
+    if defect in GAPS:
+        assert code == 0, f"{defect} ({why}) is caught now: take it out of GAPS"
+    else:
+        assert code == 1 and any(f" {NAME}-" in f for f in fails), (defect, why, fails)
