@@ -123,7 +123,6 @@ GAPS = {
     "pressure_scaled": "P and p_max are the solver's scalars, not the field's: the field "
                        "is only compared by its max (7 %) and its L2 norm, not gated at "
                        "this grid",
-    "wear_b_from_a": "the wear_b rows measure 0.4-0.5 % against a 10 % tolerance",
     "vm_max_depth": "the σ_VM maximum and its location are read from the planes; the "
                     "scalar is compared nowhere",
 }

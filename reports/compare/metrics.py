@@ -196,19 +196,37 @@ def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: fl
     pt_ref = None
     if "p_x" in fields and "p_y" in fields:
         pt_ref = np.hypot(fields["p_x"][1], fields["p_y"][1])
+    wear_ref = _wear_reference(fields, a0)
     inner = interior(contact)
     kink = stick_band((sa, sb), xs, ys, band) & contact
     rows = []
     for q, (fa, fb) in fields.items():
         scale = p0 if q.startswith("p_") else a0
         tangential = q in ("p_x", "p_y")
-        ref = pt_ref if tangential else None
+        ref = pt_ref if tangential else wear_ref.get(q)
         off = inner & ~kink if tangential else inner
         err = field_errors(fa, fb, l2_mask, scale, ref, max_mask=off)
         if err is not None:
             rows += [(q, m, err[m]) for m in tol.QUANTITY_METRICS[q]]
             rows += _kink_row(q, fa, fb, l2_mask, kink if tangential else None, scale, ref)
     return rows
+
+
+def _wear_reference(fields: dict, a0: float) -> dict[str, np.ndarray]:
+    """The norm of a body's wear where the reference solver wears that body not at all
+    but the other one: the reference's whole wear (both bodies), so that wear of the
+    wrong body is an error of the wear's own size, not one of the wear over the contact
+    radius (the scale of a zero reference in :func:`field_errors`).  Without any wear in
+    the reference, the scale stays."""
+    tiny = _TINY * a0
+    wear = {q: f for q, f in fields.items() if q.startswith("wear_")}
+    if not wear:
+        return {}
+    total = sum(np.abs(fb) for _, fb in wear.values())
+    if not np.nanmax(total, initial=0.0) > tiny:
+        return {}
+    return {q: total for q, (_, fb) in wear.items()
+            if not np.nanmax(np.abs(fb), initial=0.0) > tiny}
 
 
 def _kink_row(q: str, fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,

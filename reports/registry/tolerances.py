@@ -30,7 +30,8 @@ energy            rel                 energy dissipated in that cycle (table ``c
 Metrics, with A the first and B the second (reference) solver of the pair:
 ``l2`` = ‖A − B‖₂ / ‖B‖₂ and ``max`` = max|A − B| / max|B| on common sample points (for
 ``p_x`` and ``p_y`` the denominators are the norms of B's whole tangential traction
-|p_t| = √(p_x² + p_y²), so a component that is nearly zero in both is not inflated);
+|p_t| = √(p_x² + p_y²), so a component that is nearly zero in both is not inflated; for
+``wear_a`` or ``wear_b`` where B wears only the other body, those of B's whole wear);
 max norms leave out the *edge band*, the sample points within one cell of either
 solver's contact boundary (on the planes: within one cell, the coarser sample spacing,
 of the boundary's surface points, by the distance in space), where a cell average and a
