@@ -5,16 +5,16 @@ verdicts moved by seeded changes of the results, and bad input."""
 from __future__ import annotations
 
 import contextlib
-import importlib
 import io
 import shutil
 import subprocess
 
 import pandas as pd
 import pytest
+from plugin_site import reload_registry, write_distribution
 
 from reports.cli import main
-from reports.registry import plugins, solvers
+from reports.registry import solvers
 from reports.render.article_page import judge_and_write
 from reports.store import layout
 from reports.studies.claims import CLAIMS, judge
@@ -53,21 +53,10 @@ def solve(case, **kwargs):
 
 
 def install_decliner(site, mp: pytest.MonkeyPatch) -> None:
-    """:data:`DECLINER` installed as pip would (its module and a .dist-info with the entry
-    point on the path) and the registry loaded again as at import: plugins first."""
+    """:data:`DECLINER` installed as pip would (:mod:`plugin_site`)."""
     (site / f"{DECLINER}.py").write_text(DECLINER_MODULE)
-    info = site / f"{DECLINER}-0.1.dist-info"
-    info.mkdir()
-    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {DECLINER}\nVersion: 0.1\n")
-    (info / "entry_points.txt").write_text(f"[{plugins.GROUP}]\n{DECLINER} = "
-                                           f"{DECLINER}:record\n")
-    mp.syspath_prepend(str(site))
-    importlib.invalidate_caches()
-    builtin = {k: v for k, v in solvers.REGISTRY.items() if k not in solvers.PLUGINS}
-    found, errors = plugins.load(builtin)
-    assert DECLINER in found and not errors
-    mp.setattr(solvers, "REGISTRY", {**found, **builtin})
-    mp.setattr(solvers, "PLUGINS", found)
+    write_distribution(site, DECLINER, f"{DECLINER} = {DECLINER}:record")
+    assert reload_registry(mp, site) == [] and DECLINER in solvers.PLUGINS
 
 
 @pytest.fixture(scope="module")

@@ -6,7 +6,6 @@ out with one line naming it and the built-in chain runs unchanged."""
 
 from __future__ import annotations
 
-import importlib
 import json
 import os
 import shutil
@@ -16,9 +15,10 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from plugin_site import reload_registry, write_distribution
 
 from reports.cli import main
-from reports.registry import plugins, solvers
+from reports.registry import solvers
 from reports.render.pages import report_text
 from reports.store import layout
 
@@ -38,11 +38,7 @@ def _site(tmp_path: Path, entry: str, edit: tuple[str, str] | None) -> Path:
         text = module.read_text()
         assert edit[0] in text
         module.write_text(text.replace(*edit))
-    info = site / "contact_vv_hertz_example-0.1.0.dist-info"
-    info.mkdir()
-    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: contact-vv-hertz-example\n"
-                                   "Version: 0.1.0\n")
-    (info / "entry_points.txt").write_text(f"[{plugins.GROUP}]\n{entry}\n")
+    write_distribution(site, "contact-vv-hertz-example", entry)
     return site
 
 
@@ -51,15 +47,9 @@ def install(tmp_path, monkeypatch):
     """``install(entry=ENTRY, edit=None) -> lines left out``: the example installed and the
     registry loaded again as at import (the built-in records, then the plugins found)."""
     def _install(entry: str = ENTRY, edit: tuple[str, str] | None = None) -> list[str]:
-        monkeypatch.syspath_prepend(str(_site(tmp_path, entry, edit)))
+        site = _site(tmp_path, entry, edit)
         monkeypatch.delitem(sys.modules, "hertz_example", raising=False)
-        importlib.invalidate_caches()
-        builtin = {k: v for k, v in solvers.REGISTRY.items() if k not in solvers.PLUGINS}
-        found, errors = plugins.load(builtin)
-        monkeypatch.setattr(solvers, "REGISTRY", {**found, **builtin})
-        monkeypatch.setattr(solvers, "PLUGINS", found)
-        monkeypatch.setattr(solvers, "PLUGIN_ERRORS", errors)
-        return errors
+        return reload_registry(monkeypatch, site)
     return _install
 
 

@@ -10,13 +10,13 @@ user's.  Its catch rate is in ``benchmarks/README.md`` beside the other error ra
 
 from __future__ import annotations
 
-import importlib
 import sys
 
 import pytest
+from plugin_site import reload_registry, write_distribution
 
 from reports.cli import main
-from reports.registry import plugins, solvers
+from reports.registry import solvers
 
 NAME = "foreign_ic"
 PLUGIN = '''"""A foreign solver for the gate's tests: the half-space solver with one defect."""
@@ -130,26 +130,18 @@ GAPS = {
 
 @pytest.fixture
 def foreign(tmp_path, monkeypatch):
-    """The plugin installed (its module and .dist-info on the path) and the registry
-    loaded again as at import: the built-in records, then the plugins found."""
+    """``load(defect)``: the plugin installed as pip would (:mod:`plugin_site`) with
+    ``defect``."""
     site = tmp_path / "site"
     site.mkdir()
     (site / f"{NAME}.py").write_text(PLUGIN)
-    info = site / f"{NAME}-0.1.dist-info"
-    info.mkdir()
-    (info / "METADATA").write_text(f"Metadata-Version: 2.1\nName: {NAME}\nVersion: 0.1\n")
-    (info / "entry_points.txt").write_text(f"[{plugins.GROUP}]\n{NAME} = {NAME}:record\n")
+    write_distribution(site, NAME, f"{NAME} = {NAME}:record")
     monkeypatch.syspath_prepend(str(site))
-    importlib.invalidate_caches()
 
     def load(defect: str) -> None:
         monkeypatch.setenv("CONTACT_VV_TEST_DEFECT", defect)
         monkeypatch.delitem(sys.modules, NAME, raising=False)
-        builtin = {k: v for k, v in solvers.REGISTRY.items() if k not in solvers.PLUGINS}
-        found, errors = plugins.load(builtin)
-        assert errors == [] and NAME in found
-        monkeypatch.setattr(solvers, "REGISTRY", {**found, **builtin})
-        monkeypatch.setattr(solvers, "PLUGINS", found)
+        assert reload_registry(monkeypatch) == [] and NAME in solvers.PLUGINS
     return load
 
 
