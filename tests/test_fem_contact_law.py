@@ -252,6 +252,18 @@ def _block_compliance(xy: np.ndarray, coupling: float, rng) -> np.ndarray:
     return C
 
 
+def _mirrored_blocks(rng) -> tuple:
+    """(xy, G, w, C₁, C₁ mirrored z → −z) of a block on a 9 × 9 grid of points (G the
+    identity, weights 0.01): two such blocks of one material are decoupled."""
+    g = np.linspace(-0.4, 0.4, 9)
+    xy = np.array([(x, y) for x in g for y in g])
+    n = len(xy)
+    Rz = np.r_[np.ones(2 * n), -np.ones(n)]
+    C1 = _block_compliance(xy, 0.5, rng)
+    return (xy, sp.identity(3 * n, format="csr"), np.full(n, 0.01), C1,
+            Rz[:, None] * C1 * Rz[None, :])
+
+
 def _same_newton_step(op, law, pts, ctrl) -> None:
     """The Newton increment of the state in ``pts`` under ``ctrl``, block by block and
     from the whole system (fresh LU factors both), equal to round-off."""
@@ -283,13 +295,8 @@ def _block_and_whole(mu1, mu2, beta, approach, amplitude, angle) -> np.ndarray:
     from fem_reference.contact.semismooth import semismooth
 
     rng = np.random.default_rng(3)
-    g = np.linspace(-0.4, 0.4, 9)
-    xy = np.array([(x, y) for x in g for y in g])
+    xy, G, w, C1, mirrored = _mirrored_blocks(rng)
     n = len(xy)
-    G, w = sp.identity(3 * n, format="csr"), np.full(n, 0.01)
-    Rz = np.r_[np.ones(2 * n), -np.ones(n)]
-    C1 = _block_compliance(xy, 0.5, rng)
-    mirrored = Rz[:, None] * C1 * Rz[None, :]
     op = NodalCompliance.build(mirrored + C1, G, w)
     assert op.decoupled
     assert not NodalCompliance.build(mirrored + _block_compliance(xy, 0.3, rng), G,
@@ -366,15 +373,10 @@ def test_the_newton_step_is_the_derivative_of_the_functions(mu1, mu2, beta, angl
     from fem_reference.contact.semismooth import _update, semismooth
 
     rng = np.random.default_rng(5)
-    g = np.linspace(-0.4, 0.4, 9)
-    xy = np.array([(x, y) for x in g for y in g])
+    xy, G, w, C1, mirrored = _mirrored_blocks(rng)
     n = len(xy)
-    G, w = sp.identity(3 * n, format="csr"), np.full(n, 0.01)
-    Rz = np.r_[np.ones(2 * n), -np.ones(n)]
-    C1 = _block_compliance(xy, 0.5, rng)
     other = _block_compliance(xy, 0.3, rng) if coupled else C1
-    op = NodalCompliance.build(Rz[:, None] * C1 * Rz[None, :] + other, G, w,
-                               (xy**2).sum(axis=1))
+    op = NodalCompliance.build(mirrored + other, G, w, (xy**2).sum(axis=1))
     assert op.decoupled != coupled
     law = Law(k_n=1.0, mode="friction", k_t=1.0, M2=axes_tensor(mu1**2, mu2**2, beta),
               M2inv=axes_tensor(mu1**-2, mu2**-2, beta))
