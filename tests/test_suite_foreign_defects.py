@@ -117,9 +117,6 @@ DEFECTS = {
 #: close), each with why: the test holds the catch rate to this table, so that a hole
 #: closed or opened is seen
 GAPS = {
-    "friction_scaled": "p_x l2 and max against the closed form are 5.8 % and 5.5 % with "
-                       "tolerances 9 % and 12 %: no metric checks the law p_t = μ p_n",
-    "traction_scaled": "the same metrics at 3 %",
     "pressure_scaled": "P and p_max are the solver's scalars, not the field's: the field "
                        "is only compared by its max (7 %) and its L2 norm, not gated at "
                        "this grid",

@@ -52,8 +52,9 @@ import math
 
 import numpy as np
 
+from cases.model import Friction
 from cases.result import StepResult, vm_max_location
-from reports.compare import maxima
+from reports.compare import laws, maxima
 from reports.compare.sampling import (
     common_axis,
     contact_boundary,
@@ -150,14 +151,15 @@ def _plane_edges(step: StepResult, name: str, s: np.ndarray, x0: float, y0: floa
 
 def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
                   x0: float = 0.0, y0: float = 0.0, cell: float = 0.0,
-                  vm_rel: float = 0.02, z_below: float | None = None
-                  ) -> list[tuple[str, str, float]]:
+                  vm_rel: float = 0.02, z_below: float | None = None,
+                  friction: Friction | None = None) -> list[tuple[str, str, float]]:
     """Metric rows (quantity, metric, value) of step ``sa`` against reference ``sb``
     (planes through (x0, y0)).  ``cell``: the coarser of the two
     solvers' own cell sizes (``SolverRecord.cell_size``, e.g. the FEM's element size),
     the unit of the ``cells`` metrics where it is coarser than the sample spacing.
     ``vm_rel``: the pair's ``vm_max`` tolerance, which bounds the near-maximum sets of
-    ``vm_max_loc`` (:mod:`reports.compare.maxima`)."""
+    ``vm_max_loc`` (:mod:`reports.compare.maxima`).  ``friction``: the case's, for the
+    friction law's row (:mod:`reports.compare.laws`)."""
     hx = max(spacing(sa.x), spacing(sb.x))
     hy = max(spacing(sa.y), spacing(sb.y))
     band = max(hx, hy, cell)  # the stick band's half-width (module doc)
@@ -167,8 +169,9 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
     radius = [scalar(st, k) for st in (sa, sb) for k in ("a_x", "a_y")]
     a = max((r for r in radius if math.isfinite(r)), default=a0)
     vm_rows = maxima.rows(samples, rel=vm_rel, cell=cells, a0=a0, a=a, z_below=z_below)
-    return rows + plane_rows + vm_rows + _scalar_rows(sa, sb, a0, p0, *cells,
-                                                      vm_from_scalars=not vm_rows)
+    law = laws.rows(sa, sb, friction) if friction is not None else []
+    return rows + law + plane_rows + vm_rows + _scalar_rows(sa, sb, a0, p0, *cells,
+                                                            vm_from_scalars=not vm_rows)
 
 
 def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: float

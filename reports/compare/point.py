@@ -60,7 +60,7 @@ def step_values(case: Case, pair: str, ra: RunResult, rb: RunResult, sa: StepRes
     a0, p0 = case.hertz_scales
     x0, y0 = case.plane_centre
     rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=x0, y0=y0, cell=cell,
-                         z_below=case.stress.z_below,
+                         z_below=case.stress.z_below, friction=case.friction,
                          vm_rel=tol.tolerance(case, pair, "vm_max", "rel")[0])
     cycle = scalar(sb, "cycle")
     if math.isfinite(cycle):

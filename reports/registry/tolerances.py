@@ -25,6 +25,11 @@ loop_q            max                 fretting loop Q(δ) of an output cycle (ta
                                       ``loops``), max |Q_A − Q_B| / μP over its points
 q_ends            max                 the same at the loop's extremes δ = ±A only
 energy            rel                 energy dissipated in that cycle (table ``cycles``)
+friction_law      excess              max(‖p_t‖_μ − p_n) / max p_n of each solver's own
+                                      fields, the larger of the two (the friction
+                                      ellipse, Eq. 9: an exact law, tolerance
+                                      ``LAW_ALLOWANCE`` for every pair,
+                                      :mod:`reports.compare.laws`)
 ================  ==================  ===================================================
 
 Metrics, with A the first and B the second (reference) solver of the pair:
@@ -101,6 +106,14 @@ AREA_SCALARS = ("contact_area", "stick_area")
 TABLE_QUANTITIES = {"loop_q": ("loops", "max"), "q_ends": ("loops", "max"),
                     "energy": ("cycles", "rel")}
 
+#: the friction law checked on each solver's own fields (:mod:`reports.compare.laws`)
+LAW, EXCESS = "friction_law", "excess"
+#: its tolerance, a fraction of the peak pressure, the same for every pair: above the
+#: round-off and the contact iterations' residuals (relative 1e-6 and below) and a results
+#: file written to four significant digits (5e-5 on each component); a friction
+#: coefficient or a traction 0.5 % high exceeds it five times
+LAW_ALLOWANCE = 1e-3
+
 #: quantity -> its metrics, in the order rows are written.
 QUANTITY_METRICS: dict[str, tuple[str, ...]] = {
     **{q: ("l2", "max") for q in SURFACE_FIELDS},
@@ -109,6 +122,7 @@ QUANTITY_METRICS: dict[str, tuple[str, ...]] = {
     **{q: ("cells",) for q in LENGTH_SCALARS + AREA_SCALARS},
     "vm_max_loc": ("cells", "a0"),
     **{q: (m,) for q, (_, m) in TABLE_QUANTITIES.items()},
+    LAW: (EXCESS,),
 }
 
 def tolerance_key(quantity: str, metric: str) -> str:
@@ -131,6 +145,8 @@ def default_tolerance(pair: str, quantity: str, metric: str) -> float:
     """Default tolerance of a pair ``"A-B"``: the sum of the two solvers' budgets; for a
     metamorphic relation B of A, B's allowance alone (:mod:`reports.registry.relations`)."""
     a, _, b = pair.partition("-")
+    if quantity == LAW:  # an exact law of each solver's own fields: no budget
+        return LAW_ALLOWANCE
     if solvers.record(b).base == a:
         return budget(b, quantity, metric)
     return budget(a, quantity, metric) + budget(b, quantity, metric)
@@ -142,6 +158,8 @@ def tolerance(case: Case, pair: str, quantity: str, metric: str) -> tuple[float,
     for candidate in (f"{pair}.{key}", key):
         if candidate in case.tolerances:
             return case.tolerances[candidate], candidate
+    if quantity == LAW:
+        return default_tolerance(pair, quantity, metric), f"default:{key}"
     terms = sum(solvers.record(s).case_term(case, quantity, metric) for s in pair.split("-"))
     return default_tolerance(pair, quantity, metric) + terms, f"default:{key}"
 
