@@ -47,6 +47,7 @@ from cases.result import (
     RunResult,
     StepResult,
 )
+from cases.steps import sliding_outputs
 
 from . import fields, fretting_case, spence, wear
 from . import hertz as hz
@@ -175,8 +176,7 @@ def wear_steps(case: Case) -> list[StepResult]:
     f = case.friction
     theta = wear.sliding_angle(f.beta, case.load.slide_angle)
     i_w = sum(wear.wear_coefficient(b.i1, b.i2, theta) for b in (case.a, case.b))
-    n_last = int(round(sw.distance / sw.step))
-    numbers = sorted({int(round(v / sw.step)) for v in sw.output_s} | {0, n_last})
+    numbers = sliding_outputs(sw)
     t = sliding_traction_vector(case)
     s_c = wear.transition_distance(h.a, i_w, h.P, case.R) if i_w > 0 else math.inf
     g = case.grid

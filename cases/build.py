@@ -22,6 +22,7 @@ from .model import (
     StressOutput,
     check_positive,
 )
+from .steps import sliding_outputs
 
 KINDS = ("static", "sliding_wear", "fretting")
 
@@ -141,6 +142,7 @@ def _sliding_wear(d: dict, load: Load) -> SlidingWear:
     sliding_wear = _checked("sliding_wear", SlidingWear, d, positive=("step", "distance"))
     if load.P is None:
         raise CaseError("sliding_wear needs load control (load.P)")
+    sliding_outputs(sliding_wear)  # a whole number of steps, the outputs within the run
     return sliding_wear
 
 

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Any
 
 from cases.model import Case, CaseError
+from cases.steps import output_steps
 
 #: the suite's surface fields a file may hold (cases.result, module doc)
 SURFACE = ("p_n", "p_x", "p_y", "wear_a", "wear_b", "gap", "state")
@@ -199,11 +200,7 @@ def spec(case: Case, name: str) -> Spec:
     if "files" not in d:
         raise CaseError(f"{where}.files is required")
     files = _files(d["files"], case, f"{where}.files")
-    steps = d.get("steps", list(range(len(files))))
-    if not (isinstance(steps, list) and len(steps) == len(files)
-            and all(isinstance(s, int) and not isinstance(s, bool) for s in steps)):
-        raise CaseError(f"{where}.steps = {steps!r}: one integer step number per file "
-                        f"({len(files)} files)")
+    steps = _steps(d.get("steps"), files, case, f"{where}.steps")
     fields = _table(d.get("fields", {}), SURFACE + STRESS, f"{where}.fields")
     if "p_n" not in fields:
         raise CaseError(f"{where}.fields.p_n is required: the file's contact pressure")
@@ -227,6 +224,29 @@ def spec(case: Case, name: str) -> Spec:
         origin=tuple(float(v) for v in origin), mirror=tuple(dict.fromkeys(mirror)),
         budget=given.budget, cell=given.cell, format=fmt,
         scalars_file=_scalars_file(d.get("scalars_file"), case, f"{where}.scalars_file"))
+
+
+def _steps(value: Any, files: tuple[Path, ...], case: Case, key: str) -> list[int]:
+    """The step number of each file: ``value``, else the case's output steps in order
+    (:func:`cases.steps.output_steps`); CaseError for a number the case does not have or
+    more files than its output steps (a file no comparison would read)."""
+    known = output_steps(case)
+    if value is None:
+        if len(files) > len(known):
+            raise CaseError(f"{key}: {len(files)} files for the case's {len(known)} output "
+                            f"step(s) {known}: name the step of each file")
+        return known[:len(files)]
+    if not (isinstance(value, list) and len(value) == len(files)
+            and all(isinstance(s, int) and not isinstance(s, bool) for s in value)):
+        raise CaseError(f"{key} = {value!r}: one integer step number per file "
+                        f"({len(files)} files)")
+    unknown = [s for s in value if s not in known]
+    if unknown:
+        raise CaseError(f"{key} = {value!r}: the case has no output step {unknown} (its "
+                        f"output steps: {known}); no solver's result would meet the file")
+    if len(set(value)) < len(value):
+        raise CaseError(f"{key} = {value!r}: a step named twice")
+    return value
 
 
 def _scalars_file(value: Any, case: Case, key: str) -> Path | None:

@@ -35,6 +35,7 @@ from dataclasses import replace
 import numpy as np
 
 from cases.result import STICK, RunEvent
+from cases.steps import fretting_outputs
 
 from .contact.augmented import Control, Solution
 from .contact.laws import Evaluation
@@ -123,8 +124,7 @@ def fretting_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
     fr = case.fretting
     J = fr.jump
     n_sim = fr.simulated_cycles
-    out_sim = {fr.simulated_cycle(c): c for c in fr.output_cycles if c <= fr.cycles}
-    out_sim.setdefault(n_sim, fr.cycles)
+    out_sim = fretting_outputs(fr)
     d = slide_direction(case)
     loading, path = fr.loading_path(), fr.cycle_path()
     loops: list[tuple] = []

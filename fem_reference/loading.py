@@ -23,8 +23,9 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from cases.model import Case, CaseError, SlidingWear
+from cases.model import Case
 from cases.result import OPEN, SLIP, STICK
+from cases.steps import sliding_outputs, sliding_steps
 
 from .contact.augmented import Control, Solution, augmented
 from .contact.laws import Evaluation, evaluate
@@ -181,7 +182,7 @@ def sliding_wear_path(run: Run, progress: bool = False) -> Iterator[OutputState]
     n = sliding_steps(sw)
     dg = sw.step * slide_direction(case)
     ca, cb = wear_compliances(case, dg)
-    wanted = output_steps(sw, n)
+    wanted = set(sliding_outputs(sw))
     with progress_bar(progress, n + 1, case) as bar:
         for k in range(n + 1):
             cw = 0.0 if k == 0 else ca + cb
@@ -196,26 +197,6 @@ def sliding_wear_path(run: Run, progress: bool = False) -> Iterator[OutputState]
                     slip[:] = dg
                 yield OutputState(step=k, sol=sol, probe_ev=pev, slip=slip,
                                   iterations=sol.iterations, s=k * sw.step)
-
-
-def sliding_steps(sw: SlidingWear) -> int:
-    """The number of sliding steps; raises CaseError unless the distance is a whole
-    number of steps."""
-    n = int(round(sw.distance / sw.step))
-    if n < 1 or abs(n * sw.step - sw.distance) > 1e-9 * sw.distance:
-        raise CaseError(
-            f"sliding_wear.distance = {sw.distance} is not a whole number of steps "
-            f"of sliding_wear.step = {sw.step}"
-        )
-    return n
-
-
-def output_steps(sw: SlidingWear, n: int) -> set[int]:
-    """The output steps of ``n`` sliding steps: round(s / step) for s = 0, the
-    ``output_s`` distances and the total distance; every step without ``output_s``."""
-    if sw.output_s:
-        return {int(round(v / sw.step)) for v in sw.output_s} | {0, n}
-    return set(range(n + 1))
 
 
 class _NoBar:

@@ -34,6 +34,7 @@ from tqdm.auto import tqdm
 
 from cases.model import Case, Fretting
 from cases.result import RunEvent, RunResult, StepResult
+from cases.steps import fretting_outputs, sliding_outputs, sliding_steps
 
 from .contact import STICK, ContactNotConverged, ContactSolver, ContactState, StepSolution
 from .friction import wear_norm
@@ -75,14 +76,6 @@ def _committed(case: Case, dw: np.ndarray) -> np.ndarray:
     return spread(dw, case.solver.wear_spread, case.grid.dx, case.grid.dy)
 
 
-def _output_indices(values, unit: float, last: int) -> set[int]:
-    idx = {int(round(v / unit)) for v in values}
-    bad = [v for v in values if not 0 <= round(v / unit) <= last]
-    if bad:
-        raise ValueError(f"output points {bad} lie outside the run (0 .. {last * unit:g})")
-    return idx | {0, last}
-
-
 # ---------------------------------------------------------------------- pin-on-disk
 
 
@@ -92,8 +85,8 @@ def sliding_wear(case: Case, progress: bool = False,
     ``load.slide_angle``; only bodies with wear coefficients wear."""
     t0 = time.perf_counter()
     sw = case.sliding_wear
-    n_steps = int(round(sw.distance / sw.step))
-    outputs = _output_indices(sw.output_s, sw.step, n_steps)
+    n_steps = sliding_steps(sw)
+    outputs = set(sliding_outputs(sw))
     solver, stresses = contact_solver(case), stress_evaluator(case)
     h0 = profile(case)
     shape = h0.shape
@@ -155,8 +148,7 @@ def fretting(case: Case, progress: bool = False,
     fr = case.fretting
     J = fr.jump
     n_sim = fr.simulated_cycles
-    out_sim = {fr.simulated_cycle(c): c for c in fr.output_cycles if c <= fr.cycles}
-    out_sim.setdefault(n_sim, fr.cycles)
+    out_sim = fretting_outputs(fr)
     solver, stresses = contact_solver(case), stress_evaluator(case)
     h0 = profile(case)
     w_a, w_b = np.zeros(h0.shape), np.zeros(h0.shape)

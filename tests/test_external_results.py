@@ -292,14 +292,18 @@ def _scaled_copy(src: Path, dst: Path, factor: float) -> None:
     meshio.write(dst, mesh)
 
 
-@pytest.mark.parametrize("files, steps", [
-    ('"wrong.vtu"', "[1]"),  # the one-step case has no step 1
-    ('["step_0000.vtu", "more_1.vtu", "more_2.vtu"]', None),  # two files beyond its steps
-], ids=["a-step-the-case-lacks", "files-beyond-its-steps"])
-def test_results_compared_with_nothing_fail_the_gate(fem_results, tmp_path, files, steps):
+@pytest.mark.parametrize("files, steps, words", [
+    ('"wrong.vtu"', "[1]", "the case has no output step [1] (its output steps: [0])"),
+    ('["step_0000.vtu", "more_1.vtu", "more_2.vtu"]', None,
+     "3 files for the case's 1 output step(s) [0]"),
+    ('["step_0000.vtu", "more_1.vtu"]', "[0, 0]", "a step named twice"),
+], ids=["a-step-the-case-lacks", "files-beyond-its-steps", "a-step-twice"])
+def test_files_no_comparison_would_read_are_refused_while_planning(
+        fem_results, tmp_path, capsys, files, steps, words):
     """Issue 59: a file mapped to a step that no other solver has (here 20 % and 5 % too
-    high) used to be stored and compared nowhere, and the gate passed: every step of
-    external results that no comparison reads is a gate problem, named."""
+    high) used to be stored and compared nowhere, and the gate passed: the steps are
+    checked against the case's output steps (:func:`cases.steps.output_steps`) while the
+    run is planned — exit 2, the key named, nothing written."""
     where = export(fem_results, "hertz", tmp_path) / "base"
     base = where / "step_0000.vtu"
     _scaled_copy(base, where / "wrong.vtu", 1.2)
@@ -310,16 +314,11 @@ def test_results_compared_with_nothing_fail_the_gate(fem_results, tmp_path, file
     table = f"files = {files}" + (f"\nsteps = {steps}" if steps else "")
     case.write_text(case.read_text().replace('files = "step_0000.vtu"', table))
     out = tmp_path / "out"
-    assert ext_run(case, "fe", out) == 0
-    code = main(["gate", str(out)])
-    assert code == 1
-    from reports.render.gate import uncompared_lines
-    from reports.store.results import scan
-
-    lines = [x for c in scan(out).complete for x in uncompared_lines(c)]
-    expected = {"case step 1"} if steps else {"case step 1", "case step 2"}
-    assert {x.split(":")[0].removeprefix("UNCOMPARED ") for x in lines} == expected, lines
-    assert all("external:fe" in x and "[external.fe]" in x for x in lines), lines
+    capsys.readouterr()
+    assert ext_run(case, "fe", out) == 2
+    err = capsys.readouterr().err
+    assert "external.fe.steps" in err and words in err, err
+    assert not out.exists() or not any(out.iterdir())
 
 
 def _surface_only(where: Path) -> str:

@@ -90,6 +90,20 @@ def test_a_wrong_plugin_fails_the_gate(tmp_path, install, capsys):
     assert not any(" ic-analytic " in f for f in fails)
 
 
+def test_a_plugin_step_no_comparison_reads_fails_the_gate(tmp_path, install, capsys):
+    """Issue 59: a plugin that writes a step the case does not have (here a copy of its
+    step numbered 1, 20 % high) is compared nowhere: the gate names it (UNCOMPARED)."""
+    extra = ("steps=[step, StepResult(scalars={**step.scalars, 'step': 1.0}, x=x, y=y, "
+             "surface={'p_n': 1.2 * p_n})])")
+    install(edit=("steps=[step])", extra))
+    out = tmp_path / "res"
+    assert main([*RUN, "--solver", "hertz_example,ic,analytic", "--out", str(out)]) == 0
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out)]) == 1
+    lines = [ln for ln in capsys.readouterr().out.splitlines() if "UNCOMPARED" in ln]
+    assert len(lines) == 1 and "hertz step 1" in lines[0] and "hertz_example" in lines[0], lines
+
+
 @pytest.mark.parametrize("entry, edit, why", [
     ("hertz_example = no_such_package:record", None, "cannot load it: ModuleNotFoundError"),
     ("hertz_example = hertz_example:budget", None, "cannot load it: TypeError"),

@@ -27,6 +27,7 @@ import pytest
 from test_fem_fretting_worn import OUTPUT_CYCLES, POINTS, SIMULATED, WORN
 
 from cases.loader import BUNDLED, load_case
+from cases.steps import output_steps
 from reports.cli import main
 from reports.render.pages import report_text
 from reports.store import layout
@@ -55,6 +56,19 @@ def test_every_case_ran(quick):
         if name in WITH_FEM:
             assert "fem" in solvers, name
             assert "ic-fem" in set(pd.read_csv(quick / name / layout.METRICS)["pair"])
+
+
+def test_every_solver_writes_the_cases_output_steps(quick):
+    """The step numbers are a fact of the case (:func:`cases.steps.output_steps`): every
+    solver of every sweep point writes exactly those (a solver with other numbers would
+    meet the others nowhere, and an external file's ``steps`` are checked against them)."""
+    for name in BUNDLED:
+        summary = pd.read_csv(quick / name / layout.SUMMARY)
+        summary["param"] = summary["param"].astype(object).fillna("")
+        for case in load_case(name, quick=True):
+            point = summary[summary["param"] == (case.param or "")]
+            for solver, rows in point.groupby("solver"):
+                assert sorted(rows["step"].astype(int)) == output_steps(case), (name, solver)
 
 
 def test_gate_passes(quick, capsys):
