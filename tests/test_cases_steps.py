@@ -1,8 +1,9 @@
 """The output steps of a case (:mod:`cases.steps`), the one definition every solver
 writes by: the half-space solver's step numbers on generated cases of every kind, and
-the closed forms' among them (a fretting closed form has cycle 1 only); a case whose outputs lie outside its run, or whose distance is not
-a whole number of steps, is refused when it is loaded, naming the key.  (The FEM's, on
-every bundled quick point: ``tests/test_suite_quick_gates.py``.)"""
+the closed forms' among them (a fretting closed form has cycle 1 only); a case whose
+outputs lie outside its run, or whose distance is not a whole number of steps, is
+refused when it is loaded, naming the key.  (The FEM's, on every bundled quick point:
+``tests/test_suite_quick_gates.py``.)"""
 
 from __future__ import annotations
 
