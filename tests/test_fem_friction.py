@@ -248,3 +248,17 @@ def test_cattaneo_mindlin_traction_converges_on_three_meshes():
     print(assert_converges(hs, mx, min_order=0.0, what="p_x max error"))
     print(f"p_x max error off the stick band: {off}")
     assert max(off) < 0.10
+
+
+def test_a_frictional_contact_without_tangential_load_sticks():
+    """Identical materials pressed with friction and no tangential load carry no
+    tangential traction, so nothing slips: every closed point sticks, as in the
+    half-space solver and the closed form (the FEM solves it frictionless, and labelled
+    every closed point slip: stick area 0 against the contact area, a generated case's
+    false alarm, issue 58 point 4)."""
+    case = load_case("hertz", quick=True, overrides={"friction.mu": 0.5})[0]
+    res = solve(case, vtu=False).steps[0]
+    sc, state = res.scalars, res.surface["state"]
+    assert sc["Qx"] == 0.0 and sc["Qy"] == 0.0
+    assert not np.any(state == SLIP) and np.any(state == STICK)
+    assert sc["stick_area"] == pytest.approx(sc["contact_area"], rel=0.02)

@@ -34,11 +34,14 @@ class Law:
     """Contact law parameters.
 
     ``mode``: 'frictionless', 'sliding' (prescribed slip direction, full sliding) or
-    'friction' (incremental return map with history).
+    'friction' (incremental return map with history).  ``stuck``: a frictionless solve
+    of a frictional contact that carries no tangential traction (identical materials, no
+    tangential load): its closed points stick (‖p_t‖_μ = 0 < p_n), they do not slip.
     """
 
     k_n: float
     mode: str = "frictionless"
+    stuck: bool = False
     k_t: float = 0.0
     M2: np.ndarray = field(default_factory=lambda: np.zeros((2, 2)))  # 𝕄² in x, y
     M2inv: np.ndarray = field(default_factory=lambda: np.zeros((2, 2)))
@@ -114,7 +117,7 @@ def evaluate(law: Law, pts: Points, u: np.ndarray, delta: float, D: np.ndarray,
     T[:, 2, 2] = dpn_du
     Tdelta[:, 2] = dpn_dd
     gt = D[None, :] + disp[:, :2]
-    state = np.where(active, SLIP, OPEN)
+    state = np.where(active, STICK if law.stuck else SLIP, OPEN)
     if law.mode == "frictionless":
         t = np.zeros((n, 2))
     elif law.mode == "sliding":

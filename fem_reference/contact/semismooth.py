@@ -118,7 +118,8 @@ def _solution(p: Problem, s: State, L: Laws, it: int, res: float) -> Solution:
     t = np.where(L.active[:, None], s.lam[:2].T, 0.0)
     pts.lam_n = pn.copy()
     pts.t_old = t.copy()
-    state = np.where(L.stick, STICK, np.where(L.active, SLIP, OPEN))
+    stick = L.active if p.law.stuck else L.stick
+    state = np.where(stick, STICK, np.where(L.active, SLIP, OPEN))
     ev = Evaluation(gn=L.gn, pn=pn, t=t, gt=L.gt, state=state, T=np.zeros((n, 3, 3)),
                     Tdelta=np.zeros((n, 3)), TD=np.zeros((n, 3, 2)))
     return Solution(u=p.op.u(np.vstack([t.T, pn[None, :]])), delta=s.delta, D=s.D,

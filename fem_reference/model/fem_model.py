@@ -197,8 +197,8 @@ class FemModel:
     def _law(self) -> Law:
         case = self.case
         k_n = case.fem.penalty * case.E_star / self.h
-        if self.law_mode == "frictionless":
-            return Law(k_n=k_n)
+        if self.law_mode == "frictionless":  # with friction: nothing slips (Law.stuck)
+            return Law(k_n=k_n, stuck=case.friction.mu1 > 0.0)
         fr = case.friction
         M2 = axes_tensor(fr.mu1**2, fr.mu2**2, fr.beta)
         M2inv = axes_tensor(fr.mu1**-2, fr.mu2**-2, fr.beta)
