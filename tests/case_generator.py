@@ -63,9 +63,23 @@ def mindlin_shift(mu: float, P: float, a0: float, mat: tuple[float, float]) -> f
     return 3 * mu * P / (16 * a0) * 2 * (2 - mat[1]) / G
 
 
+#: the kinds the FEM is drawn on (:func:`fem_case`): those no closed form covers
+FEM_KINDS = ("dissimilar", "partial_slip", "sliding", "hertz", "fretting")
+
+
+def fem_case() -> st.SearchStrategy[str]:
+    """A valid case of the kinds no closed form covers, for the FEM (issue 58, point 4):
+    dissimilar frictional partial slip under an oblique tangential load, oblique partial
+    slip on a rectangular grid, orthotropic sliding at an angle, the approach held with
+    the planes off the centre, worn fretting (2–3 cycles, the last one an output, the
+    transverse motion held); the ranges otherwise those of :func:`user_case`."""
+    return user_case(kinds=FEM_KINDS, fem=True)
+
+
 @st.composite
-def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
-    """The text of a valid case file of one of ``kinds`` (module doc)."""
+def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS, fem: bool = False) -> str:
+    """The text of a valid case file of one of ``kinds`` (module doc); ``fem``: the
+    variants of :func:`fem_case`."""
     kind = draw(st.sampled_from(kinds))
     R = draw(_log_uniform(5.0, 200.0))
     P = draw(_log_uniform(1.0, 300.0))
@@ -78,9 +92,15 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
     friction, load, extra = "", f"P = {P!r}\n", ""
     top = 'kind = "static"\n'
     reach = a0
-    if kind in ("hertz", "dissimilar") and draw(st.booleans()):  # the approach held
-        load = f"approach = {a0**2 / R!r}\n"
-    if kind == "hertz" and draw(st.booleans()):
+    if kind in ("hertz", "dissimilar") and (fem and kind == "hertz" or draw(st.booleans())):
+        load = f"approach = {a0**2 / R!r}\n"  # the approach held
+    if fem and kind == "dissimilar":  # frictional partial slip under an oblique load
+        mu, q = draw(st.floats(0.1, 0.8)), draw(st.floats(0.1, 0.9))
+        angle = draw(st.floats(0.0, 2 * math.pi))
+        friction = f"[friction]\nmu = {mu!r}\n"
+        load = (f"P = {P!r}\nQx = {q * mu * P * math.cos(angle)!r}\n"
+                f"Qy = {q * mu * P * math.sin(angle)!r}\n")
+    elif kind == "hertz" and draw(st.booleans()):
         friction = f"[friction]\nmu = {draw(st.floats(0.05, 0.8))!r}\n"
     elif kind == "partial_slip":
         mu, q = draw(st.floats(0.1, 0.8)), draw(st.floats(0.1, 0.9))
@@ -94,7 +114,7 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
             load += (f"shift_x = {shift * math.cos(angle)!r}\n"
                      f"shift_y = {shift * math.sin(angle)!r}\n")
     elif kind == "sliding":
-        if draw(st.booleans()):
+        if not fem and draw(st.booleans()):
             friction = f"[friction]\nmu = {draw(st.floats(0.05, 0.8))!r}\n"
         else:
             friction = (f"[friction]\nmu1 = {draw(st.floats(0.05, 0.8))!r}\n"
@@ -142,8 +162,8 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
         body_a = body_b = f"i1 = {i_w!r}\ni2 = {ratio * i_w!r}\n"
         friction += f"beta = {beta!r}\n"
         load += f"slide_angle = {slide!r}\n"
-        cycles = draw(st.integers(1, 3))  # the closed form is cycle 1's: an output
-        outputs = sorted({1, draw(st.integers(1, cycles))})
+        cycles = draw(st.integers(2 if fem else 1, 3))  # the closed form is cycle 1's
+        outputs = sorted({1, draw(st.integers(1, cycles))} | ({cycles} if fem else set()))
         jump = ""
         if jumped:
             cycles, outputs = 4, sorted({4, draw(st.sampled_from([2, 4]))})
@@ -151,19 +171,19 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS) -> str:
         extra = (f"[fretting]\namplitude = {draw(st.floats(0.2, 3.0)) * delta_star!r}\n"
                  f"steps_per_cycle = {draw(st.sampled_from([8, 12, 20]))}\n"
                  f"cycles = {cycles}\n{jump}output_cycles = {outputs}\n"
-                 f"transverse = \"{draw(st.sampled_from(['held', 'free']))}\"\n"
+                 f"transverse = \"{'held' if fem else draw(st.sampled_from(['held', 'free']))}\"\n"
                  f"[solver]\ntol = {draw(_log_uniform(1e-10, 1e-8))!r}\n")
     cells = draw(st.floats(3.5, 10.0))  # cells per contact radius
     L = 2.0 * reach * draw(st.floats(1.3, 2.2))
     n = max(min(round(L / (a0 / cells)), 81), 9)
     grid = f"Lx = {L!r}\nnx = {n}\n"
-    if draw(st.booleans()):  # a rectangular grid, its cells rectangular too
+    if fem and kind == "partial_slip" or draw(st.booleans()):  # a rectangular grid
         Ly = 2.0 * reach * draw(st.floats(1.3, 2.2))
         ny = max(min(round(Ly / (a0 / draw(st.floats(3.5, 10.0)))), 81), 9)
         grid += f"Ly = {Ly!r}\nny = {ny}\n"
     nz = draw(st.integers(11, 31))
     stress = f"depth = {1.5 * reach!r}\nnz = {nz}\n"
-    if draw(st.booleans()):  # the planes off the centre, inside the contact
+    if fem and kind == "hertz" or draw(st.booleans()):  # planes off the centre, inside
         x0, y0 = (draw(st.floats(-0.8, 0.8)) * reach for _ in range(2))
         stress += f"x0 = {x0!r}\ny0 = {y0!r}\n"
     if draw(st.booleans()):

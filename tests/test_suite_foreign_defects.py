@@ -88,7 +88,15 @@ def _step(step):
 
 
 def solve(case, *, progress=False, on_output=None):
-    result = halfspace.solve(_case(case), progress=progress)
+    import halfspace.influence as influence
+
+    assemble = influence._assemble
+    if DEFECT == "cerruti_turned":  # A_xx with A_yy's integral and back: turned by 90°
+        influence._assemble = lambda i_s, i_xx, i_yy, *rest: assemble(i_s, i_yy, i_xx, *rest)
+    try:
+        result = halfspace.solve(_case(case), progress=progress)
+    finally:
+        influence._assemble = assemble
     result.steps = [_step(s) for s in result.steps]
     if on_output is not None:
         for s in result.steps:
@@ -100,6 +108,8 @@ def solve(case, *, progress=False, on_output=None):
 #: defect -> (quick case, what is wrong)
 DEFECTS = {
     "E_b_from_a": ("dissimilar", "body b's modulus and Poisson's ratio taken from body a"),
+    "cerruti_turned": ("fretting_isotropic", "the tangential compliance's anisotropy turned "
+                       "by 90° (the Cerruti block A_xx built with A_yy's integral)"),
     "friction_axes_turned": ("pin_on_disk_orthotropic", "the friction axes turned by 20°"),
     "wear_axes_turned": ("pin_on_disk_orthotropic", "the wear axes turned by 90°"),
     "friction_scaled": ("sliding_friction", "μ 5 % high"),

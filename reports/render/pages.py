@@ -2,7 +2,8 @@
 
 - ``DIR/index.html``: the verdict first, then the gate's problems (failures first), then
   one row per case with its counts and a link to its page, failing cases first; the
-  thresholds table.  No image: it stays small whatever the results hold.
+  thresholds table; the gate's coverage (:mod:`reports.render.coverage`).  No image: it
+  stays small whatever the results hold.
 - ``DIR/_report/<case>.html``: one page per case, the section of
   :func:`reports.render.html.case_section`; its figures are PNG files beside it,
   ``DIR/_report/<case>/fig_NNN.png``, loaded lazily.
@@ -27,6 +28,7 @@ import jinja2
 
 from cases.result import atomic_write_text
 from reports.registry.errors import UserError
+from reports.render import coverage
 from reports.render.gate import metrics_table, problems
 from reports.render.html import case_section
 from reports.render.html_blocks import CSS
@@ -174,7 +176,8 @@ def render_index(results: Scan, out: Path, rows: list[CaseRow]) -> str:
                   *((k, f"damaged: {v}") for k, v in results.damaged.items())]
     return _ENV.get_template("index.html.j2").render(
         css=CSS, out=str(out), when=provenance()["date"], problems=found, n_gated=n_on,
-        off=off, unreported=unreported, cases=rows, thresholds=thresholds_html(out))
+        off=off, unreported=unreported, cases=rows, thresholds=thresholds_html(out),
+        coverage=coverage.html(results))
 
 
 def _thresholds_problem(out: Path) -> list[str]:
