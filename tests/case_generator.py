@@ -27,9 +27,12 @@ user's).  The ranges (also in ``benchmarks/README.md``, "False alarms"):
   ``tol`` 1e-12–1e-8 (fretting 1e-10–1e-8) and ``max_iter`` 5000–50000, or unset; a
   ``description``.
 
+:func:`fem_case` draws the kinds no closed form covers for the FEM (its variants in its
+docstring; ``tests/test_fem_generated_cases.py``, 20 draws in the full tier).
+
 Not drawn, and why: ``name`` (the file stem; a directory name, no physics), ``[fem]``
-(it acts on the FEM alone, which the generated cases do not run: hundreds of FEM runs
-are beyond the fast and the full tier), ``[tolerances]`` and ``[not_converged]`` (the
+(it acts on the FEM alone, which runs on the generated cases at its default mesh, the
+one a user's case gets), ``[tolerances]`` and ``[not_converged]`` (the
 gate's own settings: the false-alarm rate is that of the defaults), ``[sweep]`` and
 ``[quick]`` (each of their points is a case of the kinds above), ``solver.wear_spread``
 (the resolution probe's own setting, which the closed forms decline; its run is drawn by
