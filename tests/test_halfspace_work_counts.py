@@ -72,7 +72,7 @@ def test_normal_contact_iterations_at_512():
 
 
 @pytest.mark.parametrize(("name", "index", "calls", "iterations"), [
-    ("fretting_isotropic", 0, 19, 1706),  # partial slip, first cycles
+    ("fretting_isotropic", 0, 19, 2184),  # partial slip, first cycles (57²)
     ("fretting_orthotropic", 1, 67, 12588),  # β = 90, worn partial slip
 ])
 def test_fretting_point_work(monkeypatch, name, index, calls, iterations):
