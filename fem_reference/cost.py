@@ -27,6 +27,7 @@ import numpy as np
 
 from cases.model import Case, FemSettings
 from cases.result import Cost
+from cases.steps import fretting_outputs, sliding_outputs, sliding_steps
 
 from .model.fem_model import FemModel
 from .model.mesh import SURFACE_GRADING, MeshSpec
@@ -206,17 +207,15 @@ def contact_solves(case: Case, law: str) -> tuple[float, int, int]:
     count by their contact size: the k-th of 5 has A ∝ (k/5)^(2/3), A³ ∝ (k/5)²."""
     if case.kind == "sliding_wear" and case.sliding_wear is not None:
         sw = case.sliding_wear
-        n = max(int(round(sw.distance / sw.step)), 1) if sw.step > 0 else 1
-        outputs = len(sw.output_s) + 2 if sw.output_s else n + 1
-        return n + 1, ITERATIONS["wear"], min(outputs, n + 1)
+        n = sliding_steps(sw)
+        return n + 1, ITERATIONS["wear"], len(sliding_outputs(sw))
     if case.kind == "fretting" and case.fretting is not None and law == "friction":
         fr = case.fretting
         n_sim = fr.simulated_cycles
         per_step = 2 if max(case.a.i1, case.a.i2, case.b.i1, case.b.i2) > 0 else 1
         loading = max(fr.steps_per_cycle // 4, 1)
-        outputs = min(len(fr.output_cycles) + 1, n_sim)
         return (1 + loading + n_sim * fr.steps_per_cycle * per_step, ITERATIONS["friction"],
-                outputs)
+                len(fretting_outputs(fr)))
     if law != "friction":
         return 1, ITERATIONS["single"], 1
     n_normal = 1.0 if case.identical_materials else sum((k / 5) ** 2 for k in range(1, 6))
