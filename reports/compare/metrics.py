@@ -169,7 +169,7 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
     radius = [scalar(st, k) for st in (sa, sb) for k in ("a_x", "a_y")]
     a = max((r for r in radius if math.isfinite(r)), default=a0)
     vm_rows = maxima.rows(samples, rel=vm_rel, cell=cells, a0=a0, a=a, z_below=z_below)
-    law = laws.rows(sa, sb, friction) if friction is not None else []
+    law = laws.rows(sa, sb, friction)
     return rows + law + plane_rows + vm_rows + _scalar_rows(sa, sb, a0, p0, *cells,
                                                             vm_from_scalars=not vm_rows)
 

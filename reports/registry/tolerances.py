@@ -28,8 +28,12 @@ energy            rel                 energy dissipated in that cycle (table ``c
 friction_law      excess              max(‖p_t‖_μ − p_n) / max p_n of each solver's own
                                       fields, the larger of the two (the friction
                                       ellipse, Eq. 9: an exact law, tolerance
-                                      ``LAW_ALLOWANCE`` for every pair,
+                                      ``OWN_ALLOWANCE`` for every pair,
                                       :mod:`reports.compare.laws`)
+pressure_peak     excess              (max p_n − p_max) / p_max of each solver's own
+                                      field and scalar, the larger of the two (no
+                                      sample of a pressure exceeds its peak: exact,
+                                      ``OWN_ALLOWANCE``, :mod:`reports.compare.laws`)
 ================  ==================  ===================================================
 
 Metrics, with A the first and B the second (reference) solver of the pair:
@@ -106,13 +110,15 @@ AREA_SCALARS = ("contact_area", "stick_area")
 TABLE_QUANTITIES = {"loop_q": ("loops", "max"), "q_ends": ("loops", "max"),
                     "energy": ("cycles", "rel")}
 
-#: the friction law checked on each solver's own fields (:mod:`reports.compare.laws`)
-LAW, EXCESS = "friction_law", "excess"
-#: its tolerance, a fraction of the peak pressure, the same for every pair: above the
+#: the exact relations checked on each solver's own results (:mod:`reports.compare.laws`):
+#: the friction law, and the pressure field bounded by the peak pressure the solver reports
+LAW, PEAK, EXCESS = "friction_law", "pressure_peak", "excess"
+OWN_RELATIONS = (LAW, PEAK)
+#: their tolerance, a fraction of the peak pressure, the same for every pair: above the
 #: round-off and the contact iterations' residuals (relative 1e-6 and below) and a results
 #: file written to four significant digits (5e-5 on each component); a friction
-#: coefficient or a traction 0.5 % high exceeds it five times
-LAW_ALLOWANCE = 1e-3
+#: coefficient, a traction or a pressure field 0.5 % high exceeds it five times
+OWN_ALLOWANCE = 1e-3
 
 #: quantity -> its metrics, in the order rows are written.
 QUANTITY_METRICS: dict[str, tuple[str, ...]] = {
@@ -123,6 +129,7 @@ QUANTITY_METRICS: dict[str, tuple[str, ...]] = {
     "vm_max_loc": ("cells", "a0"),
     **{q: (m,) for q, (_, m) in TABLE_QUANTITIES.items()},
     LAW: (EXCESS,),
+    PEAK: (EXCESS,),
 }
 
 def tolerance_key(quantity: str, metric: str) -> str:
@@ -145,8 +152,8 @@ def default_tolerance(pair: str, quantity: str, metric: str) -> float:
     """Default tolerance of a pair ``"A-B"``: the sum of the two solvers' budgets; for a
     metamorphic relation B of A, B's allowance alone (:mod:`reports.registry.relations`)."""
     a, _, b = pair.partition("-")
-    if quantity == LAW:  # an exact law of each solver's own fields: no budget
-        return LAW_ALLOWANCE
+    if quantity in OWN_RELATIONS:  # exact on each solver's own results: no budget
+        return OWN_ALLOWANCE
     if solvers.record(b).base == a:
         return budget(b, quantity, metric)
     return budget(a, quantity, metric) + budget(b, quantity, metric)
@@ -158,7 +165,7 @@ def tolerance(case: Case, pair: str, quantity: str, metric: str) -> tuple[float,
     for candidate in (f"{pair}.{key}", key):
         if candidate in case.tolerances:
             return case.tolerances[candidate], candidate
-    if quantity == LAW:
+    if quantity in OWN_RELATIONS:
         return default_tolerance(pair, quantity, metric), f"default:{key}"
     terms = sum(solvers.record(s).case_term(case, quantity, metric) for s in pair.split("-"))
     return default_tolerance(pair, quantity, metric) + terms, f"default:{key}"

@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from cases.model import Case, CaseError
-from cases.result import RunResult, StepResult, save_step, vm_max_below
+from cases.result import RunResult, StepResult, save_step, vm_max_below, vm_max_location
 from reports.registry import solvers
 from reports.run.deadline import Overrun, deadline
 from reports.run.plan import CasePlan
@@ -138,9 +138,21 @@ def add_derived(result: RunResult, case: Case) -> None:
         derive(step, case)
 
 
+#: the σ_VM maximum and its location, one definition for every solver with stress planes
+VM_SCALARS = ("vm_max", "vm_max_x", "vm_max_y", "vm_max_z")
+
+
 def derive(step: StepResult, case: Case) -> None:
-    """Scalars the reports derive from every solver's fields alike: ``vm_max_below``
+    """Scalars the reports derive from every solver's fields alike: the σ_VM maximum and
+    its location over the stress planes (:func:`cases.result.vm_max_location`, crossing at
+    the case's plane centre), in place of what the solver says where it returns planes,
+    so that ``summary.csv``, the report and the gate read one definition and a solver's
+    mislabelled scalar cannot reach them; ``vm_max_below``
     (:func:`cases.result.vm_max_below`) when the case sets ``stress.z_below``."""
+    if step.planes:
+        found = vm_max_location(step.planes, *case.plane_centre)
+        if math.isfinite(found[0]):
+            step.scalars.update(zip(VM_SCALARS, found, strict=True))
     if case.stress.z_below is not None:
         step.scalars["vm_max_below"] = vm_max_below(step.planes, case.stress.z_below)
 
