@@ -231,8 +231,10 @@ def test_a_non_convergent_quantity_is_flagged_not_gated(tmp_path, manufactured, 
     m = m[m["metric"].isin(["rel", "cells"])].drop_duplicates("quantity").set_index("quantity")
     assert m.loc["vm_max", "value"] == pytest.approx(WIGGLE, rel=1e-6)
     assert m.loc["vm_max", "status"] == "not converged"
+    # the study reads the planes' maximum, as the gate (reports.run.units.derive): where
+    # the peak sample moves down by 5 %, its neighbour is the maximum, 2.9 % down
     assert re.match(r"grid study: ic oscillating, f = [\d.]+, [\d.]+, [\d.]+ on h = "
-                    r"0\.07619, 0\.1231, 0\.2286 mm, order [\d.]+, spread 0\.0952 > budget "
+                    r"0\.07619, 0\.1231, 0\.2286 mm, order [\d.]+, spread 0\.0564 > budget "
                     r"0\.015$", m.loc["vm_max", "note"])
     assert m.loc["p_max", "status"] == "gated"
     stream = io.StringIO()

@@ -277,7 +277,8 @@ def test_what_a_closed_form_does_not_cover_is_not_compared(tmp_path, monkeypatch
     out = tmp_path / "res"
     assert run(str(write_case(tmp_path)), "--out", str(out)) == 0
     m = pd.read_csv(out / "small" / "metrics.csv")
-    assert set(m["quantity"]) == {"P", "p_n", "p_max", "a_x", "a_y", "contact_area"}
+    assert set(m["quantity"]) == {"P", "p_n", "p_max", "a_x", "a_y", "contact_area",
+                                  "pressure_peak"}  # the pressure against each one's p_max
     assert m["passed"].all()
 
 

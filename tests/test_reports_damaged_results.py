@@ -125,7 +125,7 @@ DAMAGE: list[tuple[str, Callable[[Path], object], bool, int, int, str]] = [
     ("metrics-passed-not-boolean", metric_edit("p_max", passed="maybe"), True,
      1, 1, "metrics.csv: column 'passed' holds 'maybe'"),
     ("metrics-zero-tolerance", metric_edit("vm_max_loc", tolerance="0"), True,
-     1, 1, "metrics.csv: column 'tolerance' holds 0.0 (data row 9), not a positive"),
+     1, 1, "metrics.csv: column 'tolerance' holds 0.0 (data row 10), not a positive"),
     ("metrics-ragged-rows", lambda c: (c / "metrics.csv").write_text(
         (c / "metrics.csv").read_text() + ",".join(map(str, range(1, 31))) + "\n"), True,
      1, 1, "metrics.csv: not a valid CSV table"),
@@ -227,7 +227,7 @@ def test_marked_passed_metric_reports_the_contradiction(res, capsys):
     assert code == 1
     assert_error(err, "INCONSISTENT hertz step 0 ic-analytic p_max rel: ")
     assert_error(err, "records passed = True, but value nan against tolerance 0.01 fails")
-    assert "12/13 metric(s) passed" in out
+    assert "13/14 metric(s) passed" in out
 
 
 def test_undamaged_results_pass(res, capsys):
@@ -237,7 +237,7 @@ def test_undamaged_results_pass(res, capsys):
     assert "report:" in out and "Sweep on Dask" in report_text(res)
     code, out, err = call(capsys, "gate", "--out", str(res))
     assert (code, err) == (0, ""), err
-    assert "13/13 metric(s) passed, 2 not gated (not converged), 0 problem(s)" in out
+    assert "14/14 metric(s) passed, 2 not gated (not converged), 0 problem(s)" in out
 
 
 def test_the_other_cases_are_still_reported(res, capsys):
@@ -261,7 +261,7 @@ def test_the_other_cases_are_still_reported(res, capsys):
     assert "metrics.csv: empty file (0 bytes)" in page
     code, out, err = call(capsys, "gate", "--out", str(res))
     assert code == 1
-    assert ("gate: 1 case(s), 13/13 metric(s) passed, 2 not gated (not converged), "
+    assert ("gate: 1 case(s), 14/14 metric(s) passed, 2 not gated (not converged), "
             "2 problem(s)") in out
     assert_error(err, "DAMAGED hertz: ")
 
