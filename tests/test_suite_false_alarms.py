@@ -68,6 +68,14 @@ PEER_PARTIAL_SLIP = _static(50.0, 9.1954, 2 * 200.0 * 1.42, 0.42, 2.4, 97,
                             f"P = 9.1954\nQx = {-0.875 * 0.4 * 9.1954!r}\n",
                             "[friction]\nmu = 0.4\n", 1.2)
 
+#: found by the full-tier draw of 2026-11-29: Cattaneo–Mindlin at μ = 0.75, ν = 0, Q =
+#: 0.5 μP on 11 cells (4 per contact radius), its slip annulus 0.83 cells wide: the
+#: planes' L2 took in the traction's unresolved kink at the surface (vm_xz 0.043 against
+#: 0.035; 0.008 off the stick band, which the planes' norms now leave out)
+NARROW_ANNULUS = _static(6.44484927647148, 1.0, 70000.0, 0.0, 0.14214601486959505, 11,
+                         "P = 1.0\nQx = 0.375\nQy = 0.0\n", "[friction]\nmu = 0.75\n",
+                         0.07753418992887003).replace("nz = 31\n", "nz = 11\n")
+
 
 def gate_passes(text: str, tmp: Path) -> pd.DataFrame:
     """Run a case file through ic and the closed forms and gate it; its metrics."""
@@ -98,6 +106,7 @@ def _check(text: str, tmp_path_factory) -> None:
 @example(text=PEER_PARTIAL_SLIP)
 @example(text=OFF_CENTRE_PLANE)
 @example(text=OFF_CENTRE_SLIDING)
+@example(text=NARROW_ANNULUS)
 def test_a_correct_solver_passes_the_gate_on_cases_nobody_bundled(text, tmp_path_factory):
     _check(text, tmp_path_factory)
 

@@ -50,12 +50,12 @@ size (:mod:`reports.compare.metrics`); the L2 norms of
 the tractions, the semi-widths and the contact area still measure the edge; the plane
 norms leave the band out and are taken over the points within one contact half-chord of
 the contact (its neighbourhood: the norms do not depend on how far a case's planes
-extend); the max norms of ``p_x``, ``p_y``, ``vm_xz`` and ``vm_yz`` also leave out the
-*stick band*, the points within one cell (the coarser solver's own cell) of either
-solver's stick–slip boundary, where the traction has a √(c − r) kink that no field held
-at points h apart follows (docs/formulation.md §2.7): the max over that band is written
-as the metric ``kink`` beside the max's tolerance, with status "not converged", and is
-never gated (it has no tolerance key);
+extend); the max norms of ``p_x`` and ``p_y`` and both norms of ``vm_xz`` and ``vm_yz``
+also leave out the *stick band*, the points within one cell (the coarser solver's own
+cell) of either solver's stick–slip boundary, where the traction has a √(c − r) kink
+that no field held at points h apart follows (docs/formulation.md §2.7): the max over
+that band is written as the metric ``kink`` beside the max's tolerance, with status
+"not converged", and is never gated (it has no tolerance key);
 ``rel`` = |A − B| / |B|; for ``loop_q`` ``max`` = max over the cycle's loop points of
 |Q_A − Q_B| (the tangential load vector on body a) / μP, μ the friction coefficient along
 the path direction and P the case's Hertz load (:func:`reports.compare.metrics.friction_scale`),
