@@ -7,7 +7,8 @@ functions, the load or approach) hold only the normal unknowns (Δλ_n, Δδ).  
 built and solved alone; then the tangential system (Δλ_t, ΔD) is built with the normal
 increments known, its slip rows' normal terms ``n̂ (Δd_z + c_n Δλ_n − Δδ)``
 (:mod:`.newton_rows`) moved to the right-hand side.  Two systems of orders |A| and
-2|A|, each with its own kept factors, and no system of order 3|A| built.
+2|A|, each with its own kept factors, and no system of order 3|A| built; each held as
+rows of its compliance block (:mod:`.row_system`).
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import numpy as np
 from .alart_curnier import Laws, Problem, State
 from .kept_factors import KeptFactors
 from .newton_rows import control_rows, dead_rows, slip_rows, slip_terms, stick_rows
+from .row_system import Rows
 
 
 def block_step(p: Problem, s: State, L: Laws, kept: KeptFactors, act: np.ndarray,
@@ -29,33 +31,30 @@ def block_step(p: Problem, s: State, L: Laws, kept: KeptFactors, act: np.ndarray
     tangential = [k for k in p.extra if k[1] is not None]
     # normal rows (in mm): −Δδ + Δd_z + c_w Δλ_n = −g̃_n
     cols_n = 2 * n + act
-    Jn = np.zeros((na + len(normal),) * 2)
-    Jn[:na, :na] = p.op.block(cols_n)
+    Bn = p.op.block(cols_n)
+    Jn = Rows(Bn, len(normal))
     cw = p.cw[act]
-    bn = np.zeros(Jn.shape[0])
-    bn[:na] = -(L.gn[act] + cw * s.lam[2, act]) - d_e[2, act]
+    Jn.b[:na] = -(L.gn[act] + cw * s.lam[2, act]) - d_e[2, act]
     ecol_n = {k: na + j for j, k in enumerate(normal)}
     if normal:
-        Jn[:na, na] = -1.0
-    control_rows(p, Jn, bn, L, cols_n, dlam, ecol_n)
-    S = slip_terms(p, L, act, d_e)
-    dz = None if S is None else Jn[S.k, :na].copy()  # Δd_z rows, before c_w
-    Jn[np.arange(na), np.arange(na)] += cw
-    xn = kept.part("normal").solve(Jn, bn, cols_n)
+        Jn.add(np.arange(na), na, -1.0)
+    control_rows(p, Jn, L, cols_n, dlam, ecol_n)
+    Jn.add(np.arange(na), np.arange(na), cw)
+    xn = kept.part("normal").solve(Jn.system(), cols_n)
     # tangential rows, the normal increments known
     cols_t = np.concatenate([act, n + act])
-    nt = 2 * na
-    Jt = np.zeros((nt + len(tangential),) * 2)
-    Jt[:nt, :nt] = p.op.block(cols_t)
-    bt = np.zeros(Jt.shape[0])
-    ecol_t = {k: nt + j for j, k in enumerate(tangential)}
-    stick_rows(p, L, act, d_e, Jt, bt, ecol_t)
+    Jt = Rows(p.op.block(cols_t), len(tangential))
+    ecol_t = {k: 2 * na + j for j, k in enumerate(tangential)}
+    stick_rows(p, L, act, d_e, Jt, ecol_t)
+    S = slip_terms(p, L, act, d_e)
     if S is not None:
-        slip_rows(S, na, Jt, bt, ecol_t, nt, whole=False, dcol=None)
-        known = dz @ xn[:na] + S.c_n * xn[S.k] - (xn[na] if normal else 0.0)
+        slip_rows(S, na, Jt, ecol_t, whole=False, dcol=None)
+        # their normal terms: Δd_z (the rows of the normal block, before c_w), Δλ_n, Δδ
+        known = Bn[S.k] @ xn[:na] + S.c_n * xn[S.k] - (xn[na] if normal else 0.0)
         for c in (0, 1):
-            bt[c * na + S.k] -= S.nhat[:, c] * known
-    control_rows(p, Jt, bt, L, cols_t, dlam, ecol_t)
-    dead_rows(p, s, Jt, bt, cols_t)
-    xt = kept.part("tangential").solve(Jt, bt, cols_t)
+            Jt.b[c * na + S.k] -= S.nhat[:, c] * known
+    control_rows(p, Jt, L, cols_t, dlam, ecol_t)
+    dead_rows(p, s, Jt, cols_t)
+    xt = kept.part("tangential").solve(Jt.system(), cols_t)
+    nt = 2 * na
     return np.concatenate([xt[:nt], xn[:na], xn[na:], xt[nt:]])

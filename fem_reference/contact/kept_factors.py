@@ -7,6 +7,8 @@ import numpy as np
 import scipy.linalg as la
 from scipy.sparse.linalg import LinearOperator, gmres
 
+from .row_system import RowSystem
+
 #: a Newton system on the unknowns of the kept factors is solved by GMRES preconditioned
 #: with them, in at most this many iterations (else the factors are renewed) ...
 KRYLOV_MAX = 30
@@ -37,19 +39,22 @@ class KeptFactors:
         kept across solves like these."""
         return self._parts.setdefault(key, KeptFactors())
 
-    def solve(self, J: np.ndarray, b: np.ndarray, cols: np.ndarray) -> np.ndarray:
+    def solve(self, J: RowSystem, cols: np.ndarray) -> np.ndarray:
+        """The solution of ``J x = J.b``, ``cols`` the traction unknowns of ``J``: by
+        GMRES with the kept factors, else by new ones (``J`` formed dense only then)."""
+        b = J.b
         extra = J.shape[0] - cols.size
         if self.lu is not None and extra == self.extra:
             x = self._krylov(J, b, cols)
             if x is not None:
                 self.krylov += 1
                 return x
-        self.lu = la.lu_factor(J, check_finite=False)
+        self.lu = la.lu_factor(J.dense(), overwrite_a=True, check_finite=False)
         self.cols, self.extra = cols.copy(), extra
         self.factorisations += 1
         return la.lu_solve(self.lu, b, check_finite=False)
 
-    def _krylov(self, J: np.ndarray, b: np.ndarray, cols: np.ndarray) -> np.ndarray | None:
+    def _krylov(self, J: RowSystem, b: np.ndarray, cols: np.ndarray) -> np.ndarray | None:
         old, n_old = self.cols, self.lu[0].shape[0]
         pos = np.searchsorted(old, cols)  # cols and old are sorted within their blocks
         pos = np.minimum(pos, old.size - 1)
@@ -59,7 +64,7 @@ class KeptFactors:
         i_new = np.concatenate([np.flatnonzero(shared), cols.size + np.arange(self.extra)])
         i_old = np.concatenate([pos[shared], old.size + np.arange(self.extra)])
         alone = np.flatnonzero(~shared)
-        diag = np.diag(J)[alone]
+        diag = J.diagonal()[alone]
         if np.any(diag == 0):
             return None
 
@@ -73,9 +78,10 @@ class KeptFactors:
             return out
 
         M = LinearOperator(J.shape, matvec=prec, dtype=float)
-        x, info = gmres(J, b, x0=prec(b), rtol=KRYLOV_RTOL, restart=KRYLOV_MAX, maxiter=1,
+        A = LinearOperator(J.shape, matvec=J.matvec, dtype=float)
+        x, info = gmres(A, b, x0=prec(b), rtol=KRYLOV_RTOL, restart=KRYLOV_MAX, maxiter=1,
                         M=M)
-        if info != 0 or not np.isfinite(x).all() or np.linalg.norm(J @ x - b) \
+        if info != 0 or not np.isfinite(x).all() or np.linalg.norm(J.matvec(x) - b) \
                 > 10 * KRYLOV_RTOL * max(float(np.linalg.norm(b)), 1e-300):
             return None
         return x

@@ -12,7 +12,8 @@ with ``A = ρ P r_t 𝕄²``, ``P`` the derivative of the direction ``t*/‖t*�
 ``n̂ = t*/‖t*‖_μ``: ``Δd_z`` is the normal displacement alone (the wear term ``c_w Δλ_n``
 of the normal function is the ``r c_w`` of its coefficient).  :func:`slip_terms` gives
 the coefficients; the whole system (:func:`.newton_system.newton_step`) and the
-block-triangular one (:mod:`.block_system`) write them.
+block-triangular one (:mod:`.block_system`) write them as rows of the compliance block
+and entries of their own (:mod:`.row_system`).
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .alart_curnier import Laws, Problem, State
+from .row_system import Rows
 
 
 @dataclass(frozen=True)
@@ -44,16 +46,17 @@ def dcols(ecol: dict) -> list[int | None]:
     return [ecol.get(("D", c), ecol.get(("shift", c))) for c in (0, 1)]
 
 
-def stick_rows(p: Problem, L: Laws, act: np.ndarray, d_e: np.ndarray, J: np.ndarray,
-               b: np.ndarray, ecol: dict) -> None:
-    """The stick rows in place: rows ``c |A| + k`` of the active node k, component c."""
+def stick_rows(p: Problem, L: Laws, act: np.ndarray, d_e: np.ndarray, J: Rows,
+               ecol: dict) -> None:
+    """The stick rows: rows ``c |A| + k`` of the active node k, component c (Δd_t, the
+    rows of B as they are, and ΔD)."""
     na, st = act.size, L.stick[act]
     D = dcols(ecol)
     for c in (0, 1):
         k = c * na + np.flatnonzero(st)
-        b[k] = -(L.gt[act[st], c] - p.pts.gt_old[act[st], c]) - d_e[c, act[st]]
+        J.b[k] = -(L.gt[act[st], c] - p.pts.gt_old[act[st], c]) - d_e[c, act[st]]
         if D[c] is not None:
-            J[k, D[c]] = 1.0
+            J.add(k, D[c], 1.0)
 
 
 def slip_terms(p: Problem, L: Laws, act: np.ndarray, d_e: np.ndarray) -> SlipTerms | None:
@@ -78,41 +81,36 @@ def slip_terms(p: Problem, L: Laws, act: np.ndarray, d_e: np.ndarray) -> SlipTer
                      rhs=rhs)
 
 
-def slip_rows(S: SlipTerms, na: int, J: np.ndarray, b: np.ndarray, ecol: dict, nk: int,
-              whole: bool, dcol: int | None) -> None:
-    """The slip rows in place (rows ``c |A| + k``), from the rows of J whose first ``nk``
-    columns hold Δd on entry.  ``whole``: J has the normal unknowns too (rows and
-    columns ``2 |A| + k``, their rows Δd_z alone); else the caller moves their terms to
-    the right-hand side.  ``dcol``: the column of Δδ."""
-    kx, ky = S.k, na + S.k
-    dx, dy = J[kx, :nk], J[ky, :nk]
-    dz = J[2 * na + S.k, :nk] if whole else None
+def slip_rows(S: SlipTerms, na: int, J: Rows, ecol: dict, whole: bool,
+              dcol: int | None) -> None:
+    """The slip rows (rows ``c |A| + k``): combinations of the rows of B (Δd) of the
+    node's components, and their own entries.  ``whole``: the system has the normal
+    unknowns too (rows and columns ``2 |A| + k``, their rows Δd_z alone); else the
+    caller moves their terms to the right-hand side.  ``dcol``: the column of Δδ."""
+    kx, ky, kz = S.k, na + S.k, 2 * na + S.k
     D = dcols(ecol)
     for c, k in ((0, kx), (1, ky)):
-        # the new row written in place, in the order of the sum (the same numbers)
-        row = S.A[:, c, 0, None] * dx
-        row += S.A[:, c, 1, None] * dy
+        terms = [(kx, S.A[:, c, 0]), (ky, S.A[:, c, 1])]
         if whole:
-            row += S.nhat[:, c, None] * dz
-        J[k, :nk] = row
-        J[k, nk:] = 0.0
-        J[k, kx] += S.IP[:, c, 0]
-        J[k, ky] += S.IP[:, c, 1]
+            terms.append((kz, S.nhat[:, c]))
+        J.combine(k, terms)  # in the order of the sum (the same numbers as before)
+        J.add(k, kx, S.IP[:, c, 0])
+        J.add(k, ky, S.IP[:, c, 1])
         if whole:
-            J[k, 2 * na + S.k] += S.nhat[:, c] * S.c_n
-        b[k] = S.rhs[:, c]
+            J.add(k, kz, S.nhat[:, c] * S.c_n)
+        J.b[k] = S.rhs[:, c]
         if dcol is not None:
-            J[k, dcol] = -S.nhat[:, c]
+            J.add(k, dcol, -S.nhat[:, c])
         for e in (0, 1):
             if D[e] is not None:
-                J[k, D[e]] = S.A[:, c, e]
+                J.add(k, D[e], S.A[:, c, e])
 
 
-def control_rows(p: Problem, J: np.ndarray, b: np.ndarray, L: Laws, cols: np.ndarray,
-                 dlam: np.ndarray, ecol: dict) -> None:
+def control_rows(p: Problem, J: Rows, L: Laws, cols: np.ndarray, dlam: np.ndarray,
+                 ecol: dict) -> None:
     """The rows ``ecol[k]`` of the control unknowns k in ``ecol`` (the load or approach,
-    the tangential load or shift) in place; ``cols``: the flat indices (``c n + node``)
-    of the system's traction unknowns, ``dlam`` (3, n) the eliminated increments."""
+    the tangential load or shift); ``cols``: the flat indices (``c n + node``) of the
+    system's traction unknowns, ``dlam`` (3, n) the eliminated increments."""
     ctrl, w, n = p.ctrl, p.pts.w, p.pts.n
     nk = cols.size
     for (kind, c), i in ecol.items():
@@ -121,20 +119,21 @@ def control_rows(p: Problem, J: np.ndarray, b: np.ndarray, L: Laws, cols: np.nda
         coeff = np.zeros(nk)
         coeff[sel] = w[cols[sel] - comp * n]
         known = float(w @ dlam[comp]) - float(coeff[sel] @ dlam.ravel()[cols[sel]])
+        on = np.flatnonzero(coeff)
         if kind in ("approach", "shift"):
             cs = ctrl.sym * (ctrl.compliance if kind == "approach" else ctrl.compliance_t)
-            J[i, :nk] = cs * coeff
-            J[i, i] = 1.0
-            b[i] = -L.Fe[p.extra.index((kind, c))] - cs * known
+            J.add(np.full(on.size, i), on, cs * coeff[on])
+            J.add(i, i, 1.0)
+            J.b[i] = -L.Fe[p.extra.index((kind, c))] - cs * known
         else:
-            J[i, :nk] = coeff
-            b[i] = -L.Fe[p.extra.index((kind, c))] - known
+            J.add(np.full(on.size, i), on, coeff[on])
+            J.b[i] = -L.Fe[p.extra.index((kind, c))] - known
 
 
-def dead_rows(p: Problem, s: State, J: np.ndarray, b: np.ndarray, cols: np.ndarray) -> None:
+def dead_rows(p: Problem, s: State, J: Rows, cols: np.ndarray) -> None:
     """A dead tangential component (friction) lies on a symmetry plane: λ = 0 there, in
     place of its row (``cols`` as in :func:`control_rows`)."""
     dead = np.flatnonzero(p.dead.ravel()[cols] & (cols < 2 * p.pts.n))
-    J[dead] = 0.0
-    J[dead, dead] = 1.0
-    b[dead] = -s.lam.ravel()[cols[dead]]
+    J.clear(dead)
+    J.add(dead, dead, 1.0)
+    J.b[dead] = -s.lam.ravel()[cols[dead]]

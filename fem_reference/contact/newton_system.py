@@ -12,6 +12,7 @@ from .augmented import ContactNotConverged
 from .block_system import block_step
 from .kept_factors import KeptFactors
 from .newton_rows import control_rows, dead_rows, slip_rows, slip_terms, stick_rows
+from .row_system import Rows
 
 
 def newton_step(p: Problem, s: State, L: Laws, kept: KeptFactors
@@ -54,28 +55,27 @@ def _whole_step(p: Problem, s: State, L: Laws, kept: KeptFactors, act: np.ndarra
     system of them all."""
     law, n, na, ne = p.law, p.pts.n, act.size, len(p.extra)
     nk = cols.size
-    J = np.zeros((nk + ne, nk + ne))
     # every kept row starts as the nodal compliance of its component: Δd on the
     # kept unknowns (the rows of the kept components are the kept unknowns' indices)
-    J[:nk, :nk] = p.op.block(cols)
+    B = p.op.block(cols)
     if law.mode == "sliding":  # the tangential tractions c Δλ_n of the kept Δλ_n
         c = law.slide_traction
-        J[:nk, :nk] += c[0] * p.op.cross(cols, act) + c[1] * p.op.cross(cols, n + act)
-    b = np.zeros(nk + ne)
+        B = B + (c[0] * p.op.cross(cols, act) + c[1] * p.op.cross(cols, n + act))
+    J = Rows(B, ne)
     iz = nk - na + np.arange(na)  # the λ_n block of the kept unknowns
     cw = p.cw[act]
     # normal rows (in mm): −Δδ + Δd_z + c_w Δλ_n = −g̃_n
-    b[iz] = -(L.gn[act] + cw * s.lam[2, act]) - d_e[2, act]
+    J.b[iz] = -(L.gn[act] + cw * s.lam[2, act]) - d_e[2, act]
     ecol = {k: nk + j for j, k in enumerate(p.extra)}
     dcol = next((ecol[k] for k in p.extra if k[1] is None), None)
     if dcol is not None:
-        J[iz, dcol] = -1.0
-    if law.mode == "friction":  # the slip rows read Δd_z from the normal rows: before c_w
-        stick_rows(p, L, act, d_e, J, b, ecol)
+        J.add(iz, dcol, -1.0)
+    if law.mode == "friction":  # the slip rows read Δd_z, the rows of B (before c_w)
+        stick_rows(p, L, act, d_e, J, ecol)
         S = slip_terms(p, L, act, d_e)
         if S is not None:
-            slip_rows(S, na, J, b, ecol, nk, whole=True, dcol=dcol)
-    J[iz, iz] += cw
-    control_rows(p, J, b, L, cols, dlam, ecol)
-    dead_rows(p, s, J, b, cols)
-    return kept.solve(J, b, cols)
+            slip_rows(S, na, J, ecol, whole=True, dcol=dcol)
+    J.add(iz, iz, cw)
+    control_rows(p, J, L, cols, dlam, ecol)
+    dead_rows(p, s, J, cols)
+    return kept.solve(J.system(), cols)
