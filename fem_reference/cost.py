@@ -4,11 +4,11 @@ Mesh: :func:`mesh_spec` builds the :class:`~fem_reference.model.mesh.MeshSpec` t
 :class:`~fem_reference.model.fem_model.FemModel` builds, and :func:`element_count` counts the
 tetrahedra gmsh will make without meshing, integrating the element density of the size
 field of :mod:`fem_reference.model.mesh` over the block by Gauss-Legendre panels in (r, z);
-P2 nodes, free DOFs and the condensed surface DOFs follow.  Memory: the process's base
-plus the largest stage of the model — assembly, the kept PARDISO factor, the
-condensation ``Sᵀ K⁻¹ S``, the dense surface operators.  Time: start-up, meshing,
-assembly, factorisation and condensation of a cold point, then the contact solves of
-the load path (on the DOFs in contact, by the solve of ``fem.contact``).
+P2 nodes, free DOFs and the condensed surface DOFs follow.  Memory: the parts alive
+together at the peak — the process and its mesh, PARDISO's factors, the dense surface
+operators.  Time: meshing, assembly, factorisation with the Schur block of the condensed
+DOFs and its inverse, the set-up of a cold point, then the contact solves of the load
+path (by the solve of ``fem.contact``; the semi-smooth one by kind of contact).
 :attr:`Cost.memory_keys` and ``time_keys`` name the keys whose refinement raises the
 estimate by 10 % or more, strongest first. The model's constants are fitted on this
 project's meshes and runs; the fit, the measurements and the scaling of each stage are
@@ -35,29 +35,33 @@ from .model.shape import choose_shape, has_companion, mesh_reach, reference_leng
 
 C_TET = 0.225  # mean tetrahedron volume / size³ of gmsh's meshes
 C_TRI = 0.405  # mean surface triangle area / size²
-BASE_BYTES = 250e6  # the CLI process: imports (140 MB), the mesh, earlier points' leftovers
-ASSEMBLY_BYTES_PER_TET = 55e3
-FACTOR_BYTES_PER_DOF = 290.0  # times n^(1/3)
-#: the condensation as fitted: one partial solve per column, SCHUR_BLOCK columns at a
-#: time; since the Schur-complement factorisation (issue 58) an upper bound in time and
-#: memory until the constants are refitted (benchmarks/README.md)
-SCHUR_BLOCK = 512
-DENSE_COPIES = 4  # m x m float64 arrays alive while C_rel, its factor and K_rel are formed
-
-SECONDS_BASE = 2.0  # start-up, imports and writing the results
+# Memory, fitted on the quick points' peak RSS (benchmarks/README.md, "The FEM's cost
+# estimate"): the process and its mesh, PARDISO's factors, the dense surface operators
+# (the condensed compliance, C_rel, the nodal compliance) alive together
+BASE_BYTES = 44e6
+BYTES_PER_TET = 11.9e3  # the mesh, the P2 space and the assembly's arrays
+FACTOR_BYTES_PER_DOF = 279.0  # times n^(1/3), per factorisation
+DENSE_COPIES = 3.12  # m x m float64 arrays alive at once
+# Time [s], fitted on the wall times of the quick points (same section)
+SECONDS_BASE = 0.54  # the point's own overhead: case set-up, results
 SECONDS_PER_TET_MESH = 2e-5
-SECONDS_PER_TET_ASSEMBLY = 1.2e-4
-SECONDS_FACTOR = 1.33e-9  # times n²
-SECONDS_CONDENSE = 3.6e-10  # times n^(4/3) per condensed column
-SECONDS_DENSE = 6.5e-11  # times m³ (C_rel Cholesky, K_rel)
-SECONDS_CONTACT = 1.1e-10  # times A³ per Newton iteration (A DOFs in contact) ...
-SECONDS_CONTACT_M2 = 2e-9  # ... + m² (dense products, line search): fem.contact = augmented
-#: the semi-smooth solve (fem.contact = semismooth): times A² per contact solve (a few
-#: iterations, each a GMRES solve preconditioned by kept LU factors or a new LU) ...
-SECONDS_SEMISMOOTH = 4.5e-8
+SECONDS_PER_TET_ASSEMBLY = 1.08e-4  # per Poisson's ratio
+SECONDS_FACTOR = 6.35e-10  # times n² per factorisation (PARDISO with its Schur block)
+SECONDS_SCHUR = 2.575e-11  # times m³ per Poisson's ratio (the Schur block and its inverse)
+SECONDS_SETUP = 6.44e-7  # times m^1.5 (the nodal compliance, the far field)
+#: the semi-smooth solve (fem.contact = semismooth): times m A per contact solve (its
+#: Newton systems on the A contact DOFs read the rows of the m condensed ones), by kind
+#: of contact: frictionless, full sliding, a static friction load, fretting ...
+SECONDS_SEMISMOOTH = {"frictionless": 4.91e-8, "sliding": 1.054e-7, "friction": 5.87e-8,
+                      "fretting": 1.85e-8}
 #: ... times this in fretting in partial slip (the stick edge moves at every step: more
-#: Newton iterations a solve than in gross slip)
-PARTIAL_SLIP_SOLVES = 3.9
+#: Newton iterations a solve than in gross slip) ...
+PARTIAL_SLIP_SOLVES = 1.53
+#: ... and, for either solve, times this where friction couples dissimilar materials'
+#: normal and tangential problems (more iterations)
+COUPLED_SOLVES = 2.17
+SECONDS_CONTACT = 4.62e-11  # fem.contact = augmented: times A³ per iteration ...
+SECONDS_CONTACT_M2 = 2.1e-9  # ... + m² (dense products, line search)
 SECONDS_OUTPUT = 0.3  # per output step (recovery, stress planes, .vtu)
 #: the calibration of the time estimate: the calibration runs' wall times lie within
 #: this factor of it (benchmarks/README.md, tests/test_fem_cost.py)
@@ -189,12 +193,12 @@ class Breakdown:
     dofs: float  # free DOFs n
     surface_dofs: float  # condensed DOFs m
     contact_dofs: float  # DOFs in contact at the largest contact, A
-    memory: dict  # stage -> peak bytes
+    memory: dict  # part -> bytes, alive together at the peak
     seconds: dict  # stage -> seconds
 
     @property
     def peak(self) -> float:
-        return max(self.memory.values())
+        return sum(self.memory.values())
 
     @property
     def total_seconds(self) -> float:
@@ -239,36 +243,41 @@ def _breakdown(case: Case) -> Breakdown:
     m = len(info["comps"]) * (2.0 * facets + 2.5 * np.sqrt(facets))
     A = m * min(1.0, (info["a_max"] / info["r_c"]) ** 2)
     n_nu = len(info["nus"])
-    factor = FACTOR_BYTES_PER_DOF * n ** (4.0 / 3.0)
-    dense = 8.0 * m * m
-    kept = factor + dense if n_nu > 1 else 0.0  # the first ν's factor and C₁ (0 * inf)
-    memory = {
-        "assembly": BASE_BYTES + kept + ASSEMBLY_BYTES_PER_TET * tets,
-        "condensation": BASE_BYTES + kept + factor
-        + max(3 * 8.0 * n * min(m, SCHUR_BLOCK) + dense, 3 * dense),
-        "dense": BASE_BYTES + kept + factor + DENSE_COPIES * dense,
-    }
     n_factors = n_nu * (2 if info["companion"] else 1)  # a companion: one more, not condensed
-    if info["companion"]:
-        memory["dense"] += n_nu * factor
+    memory = {
+        "mesh": BASE_BYTES + BYTES_PER_TET * tets,
+        "factors": FACTOR_BYTES_PER_DOF * n ** (4.0 / 3.0) * n_factors,
+        "dense": DENSE_COPIES * 8.0 * m * m,
+    }
     solves, iterations, outputs = contact_solves(case, info["law"])
+    coupled = COUPLED_SOLVES if coupled_friction(case) else 1.0
     seconds = {
         "base": SECONDS_BASE,
         "mesh": SECONDS_PER_TET_MESH * tets,
         "assembly": n_nu * SECONDS_PER_TET_ASSEMBLY * tets,
         "factorisation": n_factors * SECONDS_FACTOR * n * n,
-        "condensation": n_nu * SECONDS_CONDENSE * n ** (4.0 / 3.0) * m,
-        "dense": SECONDS_DENSE * m**3,
-        "contact": solves * (SECONDS_SEMISMOOTH * A**2 * semismooth_factor(case)
-                             if case.fem.contact == "semismooth"
-                             else iterations * (SECONDS_CONTACT * A**3
-                                                + SECONDS_CONTACT_M2 * m * m)),
+        "condensation": n_nu * SECONDS_SCHUR * m**3,
+        "setup": SECONDS_SETUP * m**1.5,
+        "contact": coupled * solves * (
+            SECONDS_SEMISMOOTH[solve_kind(case, info["law"])] * semismooth_factor(case) * m * A
+            if case.fem.contact == "semismooth"
+            else iterations * (SECONDS_CONTACT * A**3 + SECONDS_CONTACT_M2 * m * m)),
         "output": SECONDS_OUTPUT * outputs,
     }
     return Breakdown(tets=float(tets), dofs=float(n), surface_dofs=float(m),
                      contact_dofs=float(A),
                      memory={k: _finite_or_inf(v) for k, v in memory.items()},
                      seconds={k: _finite_or_inf(v) for k, v in seconds.items()})
+
+
+def solve_kind(case: Case, law: str) -> str:
+    """The key of :data:`SECONDS_SEMISMOOTH`: the contact law, fretting apart."""
+    return "fretting" if case.kind == "fretting" and law == "friction" else law
+
+
+def coupled_friction(case: Case) -> bool:
+    """Friction between dissimilar materials (:data:`COUPLED_SOLVES`)."""
+    return not case.identical_materials and case.friction.mu1 > 0.0
 
 
 def semismooth_factor(case: Case) -> float:
