@@ -31,7 +31,13 @@ from cases.steps import fretting_outputs, sliding_outputs, sliding_steps
 
 from .model.fem_model import FemModel
 from .model.mesh import SURFACE_GRADING, MeshSpec
-from .model.shape import choose_shape, has_companion, mesh_reach, reference_length
+from .model.shape import (
+    choose_shape,
+    condensed_radius,
+    has_companion,
+    mesh_reach,
+    reference_length,
+)
 
 C_TET = 0.225  # mean tetrahedron volume / size³ of gmsh's meshes
 C_TRI = 0.405  # mean surface triangle area / size²
@@ -75,7 +81,8 @@ _GAUSS = np.polynomial.legendre.leggauss(10)
 def mesh_spec(case: Case) -> tuple[MeshSpec | None, dict]:
     """The mesh parameters :class:`~fem_reference.model.fem_model.FemModel` uses for ``case``
     (None for the spec when they are invalid: the run would refuse them) and the model's
-    other drivers: ``a_max`` (expected radius / a_ref), ``r_c``, ``shape``, ``comps``
+    other drivers: ``a_max`` (expected radius / a_ref), ``r_c``, ``r_cond`` (the condensed
+    zone's radius), ``shape``, ``comps``
     (condensed components), ``nus`` (distinct Poisson's ratios), ``law``."""
     fem = case.fem
     a_max = mesh_reach(case, reference_length(case))
@@ -86,6 +93,7 @@ def mesh_spec(case: Case) -> tuple[MeshSpec | None, dict]:
     law = FemModel._law_mode(types.SimpleNamespace(case=case))
     normal_only = law == "frictionless" or (law == "sliding" and case.identical_materials)
     info = {"a_max": a_max, "r_c": r_c, "shape": shape, "law": law,
+            "r_cond": condensed_radius(case, reference_length(case), r_c),
             "comps": (2,) if normal_only else (0, 1, 2),
             "nus": tuple(sorted({case.a.nu, case.b.nu})), "companion": has_companion(case)}
     kw = dict(shape=shape, L=fem.block, H=fem.depth, h=fem.h, r_ref=r_c, z_ref=z_ref,
@@ -239,9 +247,9 @@ def _breakdown(case: Case) -> Breakdown:
     tets = np.float64(element_count(p))
     nodes = 1.35 * tets + 4.5 * tets ** (2.0 / 3.0)
     n = 3.0 * nodes * FREE[p["shape"]]
-    facets = np.float64(surface_facets(p, info["r_c"]))
+    facets = np.float64(surface_facets(p, info["r_cond"]))
     m = len(info["comps"]) * (2.0 * facets + 2.5 * np.sqrt(facets))
-    A = m * min(1.0, (info["a_max"] / info["r_c"]) ** 2)
+    A = m * min(1.0, (info["a_max"] / info["r_cond"]) ** 2)
     n_nu = len(info["nus"])
     n_factors = n_nu * (2 if info["companion"] else 1)  # a companion: one more, not condensed
     memory = {

@@ -77,7 +77,8 @@ def start_run(model: FemModel) -> Run:
     nodes = Points(G=G_all[:, model.cidx].tocsr(), w=dual_weights(surf, B), xy=surf.xy,
                    h=coefficients(Binv, (surf.xy**2).sum(axis=1) / (2 * R)),
                    inside=np.ones(surf.nnodes, bool))
-    layout = probe_layout(case.grid, model.shape, surf.r_c, model.h)
+    # over the refined zone (the mesh's), whatever part of it is condensed
+    layout = probe_layout(case.grid, model.shape, model.spec.r_ref * model.a_ref, model.h)
     sampling = probe_sampling(model, layout)
     xy = layout.xy
     probes = Points(G=surf.operator(sampling.N)[:, model.cidx].tocsr(), w=np.zeros(xy.shape[0]),

@@ -122,6 +122,29 @@ def test_mesh_reach_and_model_of_a_fretting_case():
     assert choose_shape(worn.with_changes(load=replace(worn.load, slide_angle=30.0))) == "full"
 
 
+def test_the_condensed_zone_ends_beyond_the_touch_bound():
+    """Under a held approach between identical materials no node beyond the rigid overlap
+    √(2Rδ) can touch: the condensed zone ends TOUCH_MARGIN surface elements beyond it
+    where that is inside the refined zone (the worn orthotropic point: 1.79 against 2.02
+    a_ref), else at the refined zone (a light point, whose zone is the Hertz radius's);
+    a load, or dissimilar materials, fix no bound."""
+    from dataclasses import replace
+
+    from fem_reference.model.shape import TOUCH_MARGIN, condensed_radius, touch_bound
+
+    worn = load_case("fretting_orthotropic", quick=True)[0]
+    a_ref = math.sqrt(worn.R * worn.load.approach)
+    r_c = 1.25 * math.sqrt(2.0) + 2.0 * worn.fem.h
+    assert touch_bound(worn, a_ref) == pytest.approx(math.sqrt(2.0), rel=1e-12)
+    assert condensed_radius(worn, a_ref, r_c) == pytest.approx(
+        math.sqrt(2.0) + TOUCH_MARGIN * worn.fem.h_contact, rel=1e-12)
+    assert condensed_radius(worn, a_ref, 1.5) == 1.5
+    soft = worn.with_changes(b=replace(worn.b, E=0.5 * worn.b.E))
+    assert touch_bound(soft, a_ref) is None and condensed_radius(soft, a_ref, r_c) == r_c
+    loaded = load_case("hertz", quick=True)[0]
+    assert touch_bound(loaded, loaded.hertz_a0) is None
+
+
 def test_fretting_runs_through_the_fem_by_default_with_its_probe():
     """A run that names no solvers runs the FEM on fretting cases as on static ones
     (issue 51), and plans one resolution probe per worn point: the half-space solver with

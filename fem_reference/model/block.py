@@ -24,7 +24,8 @@ class FactorisedBlock:
     and the condensed one-block compliances C₁(ν) (E = 1) of the contact DOFs."""
 
     def __init__(self, spec: MeshSpec, a_ref: float, comps: tuple[int, ...],
-                 nus: tuple[float, ...], log=None, companion: bool = False):
+                 nus: tuple[float, ...], log=None, companion: bool = False,
+                 r_touch: float | None = None):
         t0 = time.perf_counter()
         self.mesh = block_mesh(spec, a_ref)
         t_mesh = time.perf_counter()
@@ -48,7 +49,9 @@ class FactorisedBlock:
             fixed_anti[(3 * bottom[:, None] + np.arange(3)).ravel()] = True
             fixed_anti[(3 * plane[:, None] + np.array([0, 2])).ravel()] = True
             self.free_anti = np.nonzero(~fixed_anti)[0]
-        self.surface = ContactSurface(space, spec.r_ref * a_ref, (0, 1, 2), fixed)
+        # condensed: the refined zone, or within r_touch where no node beyond can touch
+        r_cond = spec.r_ref if r_touch is None else min(spec.r_ref, r_touch)
+        self.surface = ContactSurface(space, r_cond * a_ref, (0, 1, 2), fixed)
         self.top = ContactSurface(space, np.inf, (2,), fixed)
         self.cidx = np.nonzero(np.isin(self.surface.dof_comp, comps))[0]
         cdofs = self.surface.dofs[self.cidx]
@@ -99,7 +102,7 @@ _LAST: list = []  # [(key, core)]: the last core, kept for the next case of a sw
 
 
 def factorised_block(spec: MeshSpec, a_ref: float, comps: tuple[int, ...], nus: tuple[float, ...],
-          log=None, companion: bool = False) -> FactorisedBlock:
+          log=None, companion: bool = False, r_touch: float | None = None) -> FactorisedBlock:
     """The factorised block for these parameters, reused from the previous call when
     they match.
 
@@ -107,13 +110,14 @@ def factorised_block(spec: MeshSpec, a_ref: float, comps: tuple[int, ...], nus: 
     again: the mesh, factorisation and condensation are then done once.  Only the last
     block is kept; ``CONTACT_VV_FEM_CACHE=0`` disables the reuse.
     """
-    key = (spec.key(), float(a_ref), tuple(comps), tuple(sorted(set(nus))), companion)
+    key = (spec.key(), float(a_ref), tuple(comps), tuple(sorted(set(nus))), companion,
+           r_touch)
     if cache_enabled() and _LAST and _LAST[0][0] == key and _LAST[0][1].factor:
         core = _LAST[0][1]
     else:
         while _LAST:
             _LAST.pop()[1].release()
-        core = FactorisedBlock(spec, a_ref, comps, nus, log, companion)
+        core = FactorisedBlock(spec, a_ref, comps, nus, log, companion, r_touch)
         if cache_enabled():
             _LAST.append((key, core))
     core.uses += 1

@@ -50,6 +50,7 @@ from . import block
 from .mesh import MeshSpec
 from .shape import (
     choose_shape,
+    condensed_radius,
     has_companion,
     mesh_reach,
     reference_length,
@@ -117,6 +118,7 @@ class FemModel:
         self.h = fem.h_contact * self.a_ref  # element size at the contact surface [mm]
         self.a_max = mesh_reach(case, self.a_ref)  # units of a_ref
         r_c = 1.25 * self.a_max + 2.0 * fem.h
+        self.r_touch = condensed_radius(case, self.a_ref, r_c)
         z_ref = max(1.0, 0.8 * self.a_max)
         # a growing (worn) contact: h in the initial contact, then h ∝ distance, so the
         # final contact of radius a_max is resolved with about the same elements per radius
@@ -159,7 +161,7 @@ class FemModel:
                            "contact problem")
         core = block.factorised_block(self.spec, self.a_ref, comps,
                                       (case.a.nu, case.b.nu), log,
-                                      companion=self.sym.companion)
+                                      companion=self.sym.companion, r_touch=self.r_touch)
         self.core = core
         self.mesh, self.space = core.mesh, core.space
         self.fixed, self.free = core.fixed, core.free

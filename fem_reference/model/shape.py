@@ -72,6 +72,34 @@ def mesh_reach(case: Case, a_ref: float) -> float:
     return a / a_ref
 
 
+def touch_bound(case: Case, a_ref: float) -> float | None:
+    """The radius no point of the surface can touch at, in units of ``a_ref``, where the
+    case fixes one: under a held approach δ between identical materials, the rigid
+    overlap √(2 R δ).  Outside it the gap starts positive (r²/2R > δ), the pressure's
+    normal displacements only open it (Boussinesq's, positive), wear only removes
+    material, and identical materials' tangential tractions move no surface normally
+    (Dundurs' β = 0).  None where the reach is an estimate (:func:`mesh_reach`)."""
+    if case.load.P is not None or not case.identical_materials:
+        return None
+    return math.sqrt(2.0 * case.R * case.load.approach) / a_ref
+
+
+#: elements of the contact surface between the touch bound and the edge of the condensed
+#: zone: the run stops where the contact comes within 1.5 of the edge
+#: (:func:`fem_reference.loading.solve_increment`), 1.5 elements beyond the bound
+TOUCH_MARGIN = 3.0
+
+
+def condensed_radius(case: Case, a_ref: float, r_c: float) -> float:
+    """The radius of the condensed contact zone in units of ``a_ref``: the refined zone's
+    ``r_c``, or :data:`TOUCH_MARGIN` surface elements beyond the :func:`touch_bound`
+    where that is nearer (the nodes farther out can never touch)."""
+    bound = touch_bound(case, a_ref)
+    if bound is None:
+        return r_c
+    return min(r_c, bound + TOUCH_MARGIN * case.fem.h_contact)
+
+
 def has_companion(case: Case) -> bool:
     """Whether the half block carries the y friction traction by an antisymmetric
     companion problem (module doc): identical materials in full sliding along ±x, friction
