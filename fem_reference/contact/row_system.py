@@ -71,7 +71,6 @@ class Rows:
         self._mapped[:self.nk] = True
         self._r: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
         self._e: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []
-        self._cleared = np.zeros(self.N, dtype=bool)
 
     def combine(self, rows: np.ndarray, terms: list[tuple[np.ndarray, np.ndarray]]) -> None:
         """Rows ``rows`` become Σ ``coef`` × (row ``col`` of B) over ``terms`` (``(col,
@@ -86,7 +85,6 @@ class Rows:
 
     def clear(self, rows: np.ndarray) -> None:
         """Rows ``rows`` hold nothing so far (the entries added later stay)."""
-        self._cleared[rows] = True
         self._mapped[rows] = False
         self._r = [_drop(e, rows) for e in self._r]
         self._e = [_drop(e, rows) for e in self._e]

@@ -42,9 +42,7 @@ tractions' L2 norms (under the slip zone's resolution floor, :mod:`reports.regis
 resolution`) and the stick-zone radius (``stick_area``) still measure the boundary.  The
 planes' L2 norms leave the band out too: they have no such floor, and where the slip
 annulus spans less than a cell the kink's band at the surface holds most of their
-difference (a generated Cattaneo–Mindlin case, μ = 0.75, ν = 0, 4 cells per contact
-radius, annulus 0.83 cells: ic against the closed form vm_xz L2 0.043 with the band,
-0.008 without).
+difference (the false alarm that showed it: benchmarks/README.md, "False alarms").
 
 Fretting runs also carry per-cycle tables (``loops``: cycle, displacement, Qx, Qy;
 ``cycles``: cycle, energy, ...); at an output step whose ``cycle`` both solvers' tables
