@@ -39,8 +39,8 @@ def grid_budget(quantity: str, metric: str) -> float:
 
 
 def refine_grid(case: Case, factor: float) -> Case:
-    """The case grid refined by ``factor`` (:func:`reports.registry.solvers.refine_grid`)."""
-    from reports.registry.solvers import refine_grid as refine  # not at plugin load
+    """The case grid refined by ``factor`` (:func:`reports.registry.discretisation.refine_grid`)."""
+    from reports.registry.discretisation import refine_grid as refine  # not at plugin load
 
     return refine(case, factor)
 

@@ -41,8 +41,8 @@ def grid_budget(quantity: str, metric: str) -> float:
 
 def refine_grid(case: Case, factor: float) -> Case:
     """The case grid refined by ``factor``, as for the half-space solver's grid studies
-    (:func:`reports.registry.solvers.refine_grid`)."""
-    from reports.registry.solvers import refine_grid as refine  # not at plugin load
+    (:func:`reports.registry.discretisation.refine_grid`)."""
+    from reports.registry.discretisation import refine_grid as refine  # not at plugin load
 
     return refine(case, factor)
 

@@ -16,8 +16,11 @@ near-edge σ_VM follows the edge traction (its gradient ∝ jump/distance).  The
 of the tractions, the semi-widths and the contact area still measure the edge.  The
 σ_VM planes are compared over the contact's neighbourhood (:func:`neighbourhood`),
 their edge band left out of both norms — the plane points within one cell (the coarser
-sample spacing) of either solver's contact boundary, by their distance in space to the
-boundary's surface points, so that a plane off the centre, which crosses the boundary
+sample spacing) or the longer of the two solvers' stress reaches (``SolverRecord.reach``:
+the FEM's element diameter, for its stress at a point is the linear field of the element
+holding it, which an element reaching the edge's √ profile carries to all its points)
+of either solver's contact boundary, by their distance in space to the boundary's
+surface points, so that a plane off the centre, which crosses the boundary
 obliquely, leaves out what passes near it (the false alarm that showed it:
 benchmarks/README.md, "False alarms"): at a worn
 frictional edge the surface stress is log-singular (docs/formulation.md §2.6), the
@@ -154,13 +157,15 @@ def _plane_edges(step: StepResult, name: str, s: np.ndarray, x0: float, y0: floa
 
 
 def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
-                  x0: float = 0.0, y0: float = 0.0, cell: float = 0.0,
+                  x0: float = 0.0, y0: float = 0.0, cell: float = 0.0, reach: float = 0.0,
                   vm_rel: float = 0.02, z_below: float | None = None,
                   friction: Friction | None = None) -> list[tuple[str, str, float]]:
     """Metric rows (quantity, metric, value) of step ``sa`` against reference ``sb``
     (planes through (x0, y0)).  ``cell``: the coarser of the two
     solvers' own cell sizes (``SolverRecord.cell_size``, e.g. the FEM's element size),
     the unit of the ``cells`` metrics where it is coarser than the sample spacing.
+    ``reach``: the longer of the two solvers' stress reaches (``SolverRecord.reach``, the
+    FEM's element diameter), the planes' edge band where longer than the sample spacing.
     ``vm_rel``: the pair's ``vm_max`` tolerance, which bounds the near-maximum sets of
     ``vm_max_loc`` (:mod:`reports.compare.maxima`).  ``friction``: the case's, for the
     friction law's row (:mod:`reports.compare.laws`)."""
@@ -168,7 +173,7 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
     hy = max(spacing(sa.y), spacing(sb.y))
     band = max(hx, hy, cell)  # the stick band's half-width (module doc)
     rows = _surface_rows(sa, sb, a0, p0, band)
-    plane_rows, hz, samples = _plane_rows(sa, sb, p0, x0, y0, hx, hy, band)
+    plane_rows, hz, samples = _plane_rows(sa, sb, p0, x0, y0, max(hx, hy, reach), band)
     cells = (max(hx, cell), max(hy, cell), max(hz, cell) if hz > 0 else 0.0)
     radius = [scalar(st, k) for st in (sa, sb) for k in ("a_x", "a_y")]
     a = max((r for r in radius if math.isfinite(r)), default=a0)
@@ -253,13 +258,13 @@ def _kink_row(q: str, fa: np.ndarray, fb: np.ndarray, mask: np.ndarray | None,
 
 
 def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
-                hx: float, hy: float, band: float = 0.0
+                edge: float, band: float = 0.0
                 ) -> tuple[list[tuple[str, str, float]], float, list[maxima.PlaneSamples]]:
-    """Subsurface σ_VM planes over the contact's neighbourhood, the edge band left out
-    (:func:`neighbourhood`); both norms also leave out the stick band of half-width
-    ``band`` below the stick boundary's surface points (module doc).  Also the larger depth
-    spacing hz of the planes (0 if none) and both solvers' σ_VM at the common points
-    (:mod:`reports.compare.maxima`)."""
+    """Subsurface σ_VM planes over the contact's neighbourhood, the edge band of
+    half-width ``edge`` left out (:func:`neighbourhood`); both norms also leave out the
+    stick band of half-width ``band`` below the stick boundary's surface points (module
+    doc).  Also the larger depth spacing hz of the planes (0 if none) and both solvers'
+    σ_VM at the common points (:mod:`reports.compare.maxima`)."""
     rows, hz, samples = [], 0.0, []
     for q, name in tol.PLANE_FIELDS.items():
         pa_, pb_ = sa.planes.get(name), sb.planes.get(name)
@@ -274,7 +279,7 @@ def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
         edges = np.concatenate([_plane_edges(st, name, ss, x0, y0) for st in (sa, sb)])
         surface = maxima.plane_points(name, ss, np.zeros(1), x0, y0)[:, :2]
         boundary = np.concatenate([contact_boundary(st) for st in (sa, sb)])
-        off = off_boundary(surface, zs, boundary, max(hx, hy))
+        off = off_boundary(surface, zs, boundary, edge)
         line = (ss, np.array([y0])) if name == "xz" else (np.array([x0]), ss)
         kinks = np.concatenate([stick_edges(st, ss, line) for st in (sa, sb)])
         kink = off & ~off_edges(ss, zs, kinks, band) if kinks.size else None

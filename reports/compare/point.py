@@ -44,6 +44,13 @@ def pair_cell(case: Case, a: str, b: str) -> float:
     return max((c for c in own if math.isfinite(c)), default=0.0)
 
 
+def pair_reach(case: Case, a: str, b: str) -> float:
+    """The longer of the stress reaches of solvers ``a`` and ``b`` on ``case``
+    (``SolverRecord.stress_reach``; 0: neither has one)."""
+    own = (solvers.record(n).stress_reach(case) for n in (a, b))
+    return max((c for c in own if math.isfinite(c)), default=0.0)
+
+
 def common_steps(ra: RunResult, rb: RunResult) -> list[tuple[int, StepResult, StepResult]]:
     """(step number, step of A, step of B) for every output step both results have."""
     steps_a = {s.number(i): s for i, s in enumerate(ra.steps)}
@@ -52,14 +59,17 @@ def common_steps(ra: RunResult, rb: RunResult) -> list[tuple[int, StepResult, St
 
 
 def step_values(case: Case, pair: str, ra: RunResult, rb: RunResult, sa: StepResult,
-                sb: StepResult, cell: float) -> list[tuple[str, str, float]]:
+                sb: StepResult, cell: float, reach: float = 0.0
+                ) -> list[tuple[str, str, float]]:
     """(quantity, metric, value) of one common step of A (``ra``) against reference B
     (``rb``): the fields and scalars (:func:`reports.compare.metrics.compare_steps`) and,
     at an output cycle, the loop and its energy (:func:`reports.compare.cycles.compare_tables`);
-    ``cell`` the pair's (:func:`pair_cell`).  The one definition of every row's value."""
+    ``cell`` and ``reach`` the pair's (:func:`pair_cell`, :func:`pair_reach`).  The one
+    definition of every row's value."""
     a0, p0 = case.hertz_scales
     x0, y0 = case.plane_centre
     rows = compare_steps(sa, sb, a0=a0, p0=p0, x0=x0, y0=y0, cell=cell,
+                         reach=reach,
                          z_below=case.stress.z_below, friction=case.friction,
                          vm_rel=tol.tolerance(case, pair, "vm_max", "rel")[0])
     cycle = scalar(sb, "cycle")
@@ -83,8 +93,9 @@ def point_rows(case: Case, results: Mapping[str, RunResult], probed: bool = Fals
         pair = f"{sa_name}-{sb_name}"
         ra, rb = results[sa_name], results[sb_name]
         cell = pair_cell(case, sa_name, sb_name)
+        reach = pair_reach(case, sa_name, sb_name)
         for n, sa, sb in common_steps(ra, rb):
-            rows = step_values(case, pair, ra, rb, sa, sb, cell)
+            rows = step_values(case, pair, ra, rb, sa, sb, cell, reach)
             exact = solvers.exact_pair(pair)
             resolution = None if exact else step_resolution(sa, sb, cell, x0, y0)
             # the probe measures what the coarser element does to the worn annulus

@@ -60,6 +60,10 @@ class SolverRecord:
     #: element: its surface is polynomial within one), for the resolution probe
     #: (reports.studies.probe); None: it holds a step sharp, or has no surface
     step_width: Callable[[Case], float] | None = None
+    #: the distance [mm] over which the field around a point decides the solver's
+    #: subsurface stresses there: the width of the planes' edge band
+    #: (reports.compare.metrics); None: its cell
+    reach: Callable[[Case], float] | None = None
     closed_form: bool = False
     solve_attr: str = "solve"
     supports_attr: str = "supports"
@@ -74,6 +78,10 @@ class SolverRecord:
     #: keyword arguments every entry point of the package is called with (an external
     #: result set's ``name``)
     options: Mapping[str, Any] = field(default_factory=dict)
+
+    def stress_reach(self, case: Case) -> float:
+        """:attr:`reach` of ``case``, else its cell (NaN: a closed form's, none)."""
+        return (self.reach or self.cell_size)(case)
 
     def entry(self, attr: str) -> Callable:
         """The callable ``attr`` of the package; SolverUnavailable if it cannot load."""

@@ -93,11 +93,18 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterable
-from dataclasses import replace
 
-from cases.model import Case, CaseError
+from cases.model import Case
 from cases.result import Cost, RunResult
 from reports.registry import plugins, relations
+from reports.registry.discretisation import (
+    fem_cell,
+    fem_label,
+    fem_reach,
+    no_cell,
+    refine_fem,
+    refine_grid,
+)
 from reports.registry.errors import SolverUnavailable
 from reports.registry.external import EXTERNAL, external_record, is_external
 from reports.registry.record import SolverRecord
@@ -181,57 +188,13 @@ def fem_model_form(quantity: str, metric: str) -> float:
     return FEM_BLOCK_TERMS.get(quantity, math.nan) if metric == "rel" else math.nan
 
 
-def fem_cell(case: Case) -> float:
-    """The FEM's element size at the contact surface [mm]: ``fem.h_surface`` (else
-    ``fem.h``) in units of a0."""
-    return case.fem.h_contact * case.hertz_scales[0]
-
-
-def fem_label(case: Case) -> str:
-    """The FEM's element sizes, ``fem.h=0.125`` (a0), with ``h_surface`` if set."""
-    hs = case.fem.h_surface
-    return f"fem.h={case.fem.h:.4g}" + ("" if hs is None else f",h_surface={hs:.4g}")
-
-
-def no_cell(case: Case) -> float:
-    """A closed form has no cell size."""
-    return math.nan
-
-
-def _cells(n: int, factor: float, key: str) -> int:
-    """``n`` cells refined by ``factor`` (coarsened when it is below 1): the nearest count
-    of the same parity (an odd count keeps a cell centred on the axis, an even one a cell
-    face there) that changes the cell size by at least ``factor``."""
-    m = math.ceil(n * factor - 1e-9) if factor > 1 else math.floor(n * factor + 1e-9)
-    if (m - n) % 2:
-        m += 1 if factor > 1 else -1
-    if m < 4:
-        raise CaseError(f"{key} = {n}: a grid {1 / factor:g} times coarser has {m} cells "
-                        "(at least 4 needed); refine the grid for a grid-convergence study")
-    return m
-
-
-def refine_grid(case: Case, factor: float) -> Case:
-    """``case`` on a grid whose cells are ``factor`` times smaller (larger when ``factor``
-    < 1): ``grid.nx``, ``grid.ny`` scaled, the extents and everything else unchanged."""
-    g = case.grid
-    grid = replace(g, nx=_cells(g.nx, factor, "grid.nx"), ny=_cells(g.ny, factor, "grid.ny"))
-    return case.with_changes(grid=grid)
-
-
-def refine_fem(case: Case, factor: float) -> Case:
-    """``case`` with the FEM's element sizes ``fem.h`` and ``fem.h_surface`` divided by
-    ``factor`` (the block, the penalty in units of E*/h and the output grid unchanged)."""
-    return case.with_changes(fem=case.fem.refined(factor))
-
-
 #: solver name -> record; the order is the order of columns, rows and pairs (the second
 #: solver of a pair is its reference).
 REGISTRY: dict[str, SolverRecord] = {
     "ic": SolverRecord("ic", "halfspace", budget=grid_budget, refine=refine_grid,
                        style={"color": "C0", "ls": "-", "marker": "o", "ms": 3}),
     "fem": SolverRecord("fem", "fem_reference", budget=fem_budget, cell_size=fem_cell,
-                        label=fem_label, step_width=fem_cell,
+                        label=fem_label, step_width=fem_cell, reach=fem_reach,
                         refine=refine_fem, model_form=fem_model_form,
                         style={"color": "C1", "ls": "--", "marker": "s", "ms": 3}),
     "analytic": SolverRecord("analytic", "analytic", budget=closed_form_budget,

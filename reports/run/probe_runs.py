@@ -12,7 +12,7 @@ import pandas as pd
 
 from cases.result import RunResult
 from reports.compare.metrics import scalar
-from reports.compare.point import common_steps, pair_cell, step_values
+from reports.compare.point import common_steps, pair_cell, pair_reach, step_values
 from reports.registry.pairs import pairs
 from reports.run.plan import CasePlan
 from reports.run.study_runs import run_levels
@@ -68,8 +68,10 @@ def table_rows(plan: CasePlan, g: probe.ProbeRun, own: RunResult, spread: RunRes
     out = []
     for pair in probe.probed_pairs(names):
         cell = pair_cell(case, *pair.split("-", 1))
+        reach = pair_reach(case, *pair.split("-", 1))
         for n, sa, sb in common_steps(spread, own):
-            for quantity, metric, value in step_values(case, pair, spread, own, sa, sb, cell):
+            for quantity, metric, value in step_values(case, pair, spread, own, sa, sb, cell,
+                                                       reach):
                 out.append({"param": case.param, "pair": pair, "step": n,
                             "cycle": scalar(sb, "cycle"), "quantity": quantity,
                             "metric": metric, "sensitivity": value, "width": g.width,
