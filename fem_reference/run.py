@@ -90,7 +90,7 @@ def start_run(model: FemModel) -> Run:
                locator=PointLocator(model.space),
                u=u, delta=delta, D=np.zeros(2),
                lin=None if semismooth else StiffenedSolver(model.Crel),
-               op=NodalCompliance.build(model.Crel, nodes.G, nodes.w, nodes.h)
+               op=NodalCompliance.build(model.compliance, nodes.G, nodes.w, nodes.h)
                if semismooth else None,
                **dict(zip(("compliance", "compliance_t"),
                           far_compliance(model, nodes, G_all), strict=True)))
@@ -138,7 +138,7 @@ def hertz_start(model: FemModel, pts: Points, frac: float = 1.0) -> tuple[np.nda
     w = pts.w
     n = w.size
     f = pts.G.T @ np.concatenate([np.zeros(2 * n), w * pH])
-    u = model.Crel @ f
+    u = model.compliance @ f
     if case.load.P is None:
         return u, float(case.load.approach) * frac
     uz = pts.displacement(u)[:, 2]

@@ -45,6 +45,7 @@ import scipy.linalg as la
 from cases.model import Case, CaseError
 
 from ..contact.laws import Law, axes_tensor, norm_with
+from ..contact.relative import RelativeCompliance
 from ..errors import FemError, FemUnsupported
 from . import block
 from .mesh import MeshSpec
@@ -169,11 +170,18 @@ class FemModel:
         self.factor, self.stiffness = core.factor, core.stiffness
         C1 = core.C1
         Rz = np.where(self.surface.dof_comp[self.cidx] == 2, -1.0, 1.0)
-        Crel = (Rz[:, None] * C1[case.a.nu] * Rz[None, :]) / case.a.E + C1[case.b.nu] / case.b.E
-        self.Crel = Crel
+        self.compliance = RelativeCompliance(C1[case.a.nu], C1[case.b.nu], Rz, case.a.E,
+                                             case.b.E)
         self.law = self._law()
         self.timings = {**core.timings, "reused": core.uses > 1,
                         "setup_s": time.perf_counter() - t0}
+
+    @cached_property
+    def Crel(self) -> np.ndarray:
+        """The condensed relative compliance whole, formed on first use: only the augmented
+        solve (``fem.contact = "augmented"``) needs it; the semi-smooth solve works on
+        :attr:`compliance` (:mod:`fem_reference.contact.relative`)."""
+        return self.compliance.dense()
 
     @cached_property
     def Krel(self) -> np.ndarray:
