@@ -43,7 +43,8 @@ C_TET = 0.225  # mean tetrahedron volume / size³ of gmsh's meshes
 C_TRI = 0.405  # mean surface triangle area / size²
 # Memory, fitted on the quick points' peak RSS (benchmarks/README.md, "The FEM's cost
 # estimate"): the process and its mesh, PARDISO's factors, the dense surface operators
-# (the condensed compliance, C_rel, the nodal compliance) alive together
+# alive together (fitted while C_rel was formed whole and the nodal compliance kept its
+# zero blocks: an upper bound since, held by tests/test_fem_cost.py)
 BASE_BYTES = 44e6
 BYTES_PER_TET = 11.9e3  # the mesh, the P2 space and the assembly's arrays
 FACTOR_BYTES_PER_DOF = 279.0  # times n^(1/3), per factorisation

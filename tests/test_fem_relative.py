@@ -51,3 +51,26 @@ def test_the_relative_compliance_is_the_whole_one(same, fortran):
     assert a.decoupled == b.decoupled == same
     lam = rng.standard_normal((3, n))
     assert np.abs(a.u(lam) - b.u(lam)).max() <= 1e-14 * np.abs(a.u(lam)).max() * m
+
+
+def test_a_normal_contact_keeps_its_normal_block_alone():
+    """Condensed normal DOFs only (a frictionless or sliding contact between identical
+    materials): the nodal compliance keeps its normal block alone, and its products,
+    blocks, cross blocks and diagonal are the whole matrix's."""
+    rng = np.random.default_rng(11)
+    n = 30
+    C = _spd(n, rng, True)
+    G = sp.vstack([sp.csr_matrix((2 * n, n)),
+                   sp.identity(n) + sp.random(n, n, density=0.05, random_state=rng)]).tocsr()
+    w = rng.uniform(0.5, 2.0, n)
+    op = NodalCompliance.build(C, G, w, rng.uniform(0.0, 1.0, n))
+    assert op.decoupled and [first for first, _ in op.blocks] == [2 * n]
+    HW = (G @ C @ G.T.toarray()) * np.tile(w, 3)[None, :]
+    top = 1e-14 * np.abs(HW).max()
+    lam = rng.standard_normal((3, n))
+    assert np.abs(op.apply(lam) - (HW @ lam.ravel()).reshape(3, n)).max() <= top * n
+    assert np.abs(op.diagonal() - np.diag(HW).reshape(3, n)).max() <= top
+    cols = np.sort(rng.choice(3 * n, 40, replace=False))
+    assert np.abs(op.block(cols) - HW[np.ix_(cols, cols)]).max() <= top
+    rows = rng.choice(3 * n, 17, replace=False)
+    assert np.abs(op.cross(rows, cols) - HW[np.ix_(rows, cols)]).max() <= top

@@ -28,7 +28,8 @@ class NodalCompliance:
     [x; y; z] of the points ``G``, ``w``, kept with the nodes of each component in the
     touch ``order`` (module doc) as its diagonal ``blocks`` ``(first row, block)``: the
     whole matrix, or, ``decoupled``, its tangential and normal blocks alone (the
-    coupling blocks are zero, and not kept); and ``C`` for the condensed displacements
+    coupling blocks are zero, and not kept; nor the block of components with no
+    condensed DOF, a normal contact's tangential one); and ``C`` for the condensed displacements
     ``u = C Gᵀ W λ``.  Flat indices (``c n + node``) of the methods are in the nodes'
     own order."""
 
@@ -51,11 +52,13 @@ class NodalCompliance:
         Gt = G[flat]  # the points' rows in touch order
         # identical materials (Dundurs' β = 0): the mirrored blocks' normal–tangential
         # compliances cancel in C_rel to the last bit, so H's coupling blocks are zero
-        blocks = _decoupled(Gt, C, n) or _whole(Gt, C)
+        blocks = _decoupled(Gt, C, n)
+        decoupled = blocks is not None
+        if blocks is None:
+            blocks = _whole(Gt, C)
         for first, B in blocks:
             B *= np.tile(w[order], 3)[None, first:first + B.shape[1]]
-        return cls(C=C, G=G, w=w, blocks=tuple(blocks), order=order,
-                   decoupled=len(blocks) == 2)
+        return cls(C=C, G=G, w=w, blocks=tuple(blocks), order=order, decoupled=decoupled)
 
     def _touch(self, idx: np.ndarray) -> np.ndarray:
         """Flat indices in the nodes' order -> flat indices in touch order."""
@@ -67,8 +70,11 @@ class NodalCompliance:
 
     def diagonal(self) -> np.ndarray:
         """The self-compliance of each node and component (3, n) [mm/MPa·mm²]."""
+        d = np.zeros(3 * self.w.size)
+        for first, B in self.blocks:
+            d[first:first + B.shape[0]] = np.diag(B)
         out = np.empty((3, self.w.size))
-        out[:, self.order] = np.concatenate([np.diag(B) for _, B in self.blocks]).reshape(3, -1)
+        out[:, self.order] = d.reshape(3, -1)
         return out
 
     def apply(self, lam: np.ndarray) -> np.ndarray:
@@ -108,7 +114,7 @@ class NodalCompliance:
 
     def _gather(self, tr: np.ndarray, tc: np.ndarray) -> np.ndarray:
         """``HW[tr][:, tc]`` of flat indices in touch order (zero off the blocks)."""
-        if len(self.blocks) == 1:
+        if len(self.blocks) == 1 and self.blocks[0][1].shape[0] == 3 * self.w.size:
             return self.blocks[0][1][np.ix_(tr, tc)]
         out = np.zeros((tr.size, tc.size))
         for first, B in self.blocks:
@@ -144,9 +150,12 @@ def _whole(Gt: sp.csr_matrix, C) -> list[tuple[int, np.ndarray]]:
 
 def _decoupled(Gt: sp.csr_matrix, C, n: int) -> list[tuple[int, np.ndarray]] | None:
     """The tangential and normal diagonal blocks of ``G C Gᵀ`` (column-major), where
-    every entry of its coupling blocks is zero; None at the first that is not."""
+    every entry of its coupling blocks is zero (None at the first that is not); a block
+    whose rows of G are empty (no condensed DOF of its components) is left out."""
     blocks = []
     for lo, hi in ((0, 2 * n), (2 * n, 3 * n)):
+        if Gt[lo:hi].nnz == 0:
+            continue
         B = np.empty((hi - lo, hi - lo), order="F")
         for first in range(lo, hi, BLOCK):
             last = min(first + BLOCK, hi)
