@@ -126,6 +126,34 @@ def test_the_norms_leave_out_the_edge_band():
     assert rows[("p_n", "l2")] > 0.3
 
 
+def test_the_planes_band_is_the_stress_reach_of_the_pair():
+    """An element's outlier (a point value 1.6 cells deep below the contact edge) is left
+    out of the planes' norms where the pair's stress reach covers it and measured where it
+    does not; a difference just beyond the reach is still measured; the FEM's reach is
+    FEM_ELEMENT_DIAMETER of its cells, a grid solver's its cell."""
+    from cases.loader import load_case
+    from reports.compare.point import pair_reach
+    from reports.registry.discretisation import FEM_ELEMENT_DIAMETER, fem_cell
+    from reports.registry.record import grid_cell
+
+    x = np.linspace(-1.0, 1.0, 41)  # h = 0.05, the boundary's midpoint at s = ±0.525
+    sa = _flat_punch_step(0.5, x, vm_edge=1.0)
+    sb = _flat_punch_step(0.5, x, vm_edge=1.0)
+    z = sa.planes["xz"].z  # 0.2 apart
+    sb.planes["xz"].fields["vm"] = sb.planes["xz"].fields["vm"].copy()
+    i = int(np.argmin(np.abs(x - 0.45)))  # 0.075 from the boundary point, z = 0.2
+    sb.planes["xz"].fields["vm"][i, 1] = 1.3
+    d = float(np.hypot(x[i] - 0.525, z[1]))
+    for reach, left_out in ((0.0, False), (d - 0.01, False), (d + 0.01, True)):
+        rows = {(q, m): v for q, m, v in compare_steps(sa, sb, a0=0.5, p0=1.0, reach=reach)}
+        assert (rows[("vm_xz", "max")] == 0.0) == left_out, reach
+        assert rows[("vm_xz", "max")] in (0.0, pytest.approx(0.3 / 1.3, rel=1e-12))
+    case = load_case("hertz", quick=True)[0]
+    assert pair_reach(case, "ic", "fem") == FEM_ELEMENT_DIAMETER * fem_cell(case)
+    assert pair_reach(case, "ic", "analytic") == grid_cell(case)
+    assert pair_reach(case, "fem", "analytic") == FEM_ELEMENT_DIAMETER * fem_cell(case)
+
+
 def _mindlin_step(x: np.ndarray, c: float, h: float | None = None) -> StepResult:
     """Cattaneo–Mindlin surface fields (a = 1, p0 = 1, μ = 0.3, stick radius c) on the
     grid x²; with ``h``, every field is held at nodes h apart (offset from the grid) and
