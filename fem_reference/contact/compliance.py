@@ -29,9 +29,9 @@ class NodalCompliance:
     touch ``order`` (module doc) as its diagonal ``blocks`` ``(first row, block)``: the
     whole matrix, or, ``decoupled``, its tangential and normal blocks alone (the
     coupling blocks are zero, and not kept; nor the block of components with no
-    condensed DOF, a normal contact's tangential one); and ``C`` for the condensed displacements
-    ``u = C Gᵀ W λ``.  Flat indices (``c n + node``) of the methods are in the nodes'
-    own order."""
+    condensed DOF, a normal contact's tangential one); and ``C`` for the condensed
+    displacements ``u = C Gᵀ W λ``.  Flat indices (``c n + node``) of the methods are in
+    the nodes' own order."""
 
     C: np.ndarray | RelativeCompliance
     G: sp.csr_matrix
