@@ -40,15 +40,18 @@ _SHOWN = {KINK: ("max", KINK_NOTE), maxima.EDGE: ("rel", maxima.EDGE_NOTE),
 
 def pair_cell(case: Case, a: str, b: str) -> float:
     """The coarser of the cells of solvers ``a`` and ``b`` on ``case`` (0: neither has one)."""
-    own = (solvers.record(n).cell_size(case) for n in (a, b))
-    return max((c for c in own if math.isfinite(c)), default=0.0)
+    return _coarser(solvers.record(n).cell_size(case) for n in (a, b))
 
 
 def pair_reach(case: Case, a: str, b: str) -> float:
     """The longer of the stress reaches of solvers ``a`` and ``b`` on ``case``
     (``SolverRecord.stress_reach``; 0: neither has one)."""
-    own = (solvers.record(n).stress_reach(case) for n in (a, b))
-    return max((c for c in own if math.isfinite(c)), default=0.0)
+    return _coarser(solvers.record(n).stress_reach(case) for n in (a, b))
+
+
+def _coarser(lengths) -> float:
+    """The largest of the finite ``lengths`` (0: none is)."""
+    return max((c for c in lengths if math.isfinite(c)), default=0.0)
 
 
 def common_steps(ra: RunResult, rb: RunResult) -> list[tuple[int, StepResult, StepResult]]:
@@ -59,8 +62,7 @@ def common_steps(ra: RunResult, rb: RunResult) -> list[tuple[int, StepResult, St
 
 
 def step_values(case: Case, pair: str, ra: RunResult, rb: RunResult, sa: StepResult,
-                sb: StepResult, cell: float, reach: float = 0.0
-                ) -> list[tuple[str, str, float]]:
+                sb: StepResult, cell: float, reach: float) -> list[tuple[str, str, float]]:
     """(quantity, metric, value) of one common step of A (``ra``) against reference B
     (``rb``): the fields and scalars (:func:`reports.compare.metrics.compare_steps`) and,
     at an output cycle, the loop and its energy (:func:`reports.compare.cycles.compare_tables`);
