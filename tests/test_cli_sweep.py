@@ -48,7 +48,7 @@ def test_sweep_points_replace_the_file_sweep(tmp_path):
 
 def test_workers_get_this_process_thread_settings(monkeypatch):
     pytest.importorskip("distributed")
-    from reports.run.sweep import worker_environ
+    from reports.run.cluster import worker_environ
 
     monkeypatch.setenv("OPENBLAS_NUM_THREADS", "3")
     monkeypatch.delenv("OMP_NUM_THREADS", raising=False)
@@ -81,7 +81,7 @@ def test_dask_sweep_matches_serial(tmp_path, monkeypatch, capsys):
     mf = json.loads((tmp_path / "dask" / name / "manifest.json").read_text())
     assert mf["executor"]["workers"] == 2 and mf["executor"]["threads"] == 2
     # the workers compute with this process's BLAS/OpenMP thread settings
-    from reports.run.sweep import _thread_env
+    from reports.run.cluster import _thread_env
 
     assert list(mf["executor"]["worker_thread_env"].values()) == [_thread_env()] * 2
     assert mf["sweep"]["keys"] == ["friction.mu"]

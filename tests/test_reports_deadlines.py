@@ -172,20 +172,68 @@ def test_an_enclosing_deadline_still_stops_the_block(monkeypatch):
                 x = np.sqrt(x * x)
 
 
-def test_no_alarm_outside_the_main_thread():
-    errors = []
+def _in_thread(fn) -> list:
+    """What ``fn`` returned or raised in a thread of its own."""
+    out = []
 
     def work():
         try:
-            with deadline.deadline(0.05, "thread"):
-                time.sleep(0.2)
+            out.append(fn())
         except BaseException as exc:  # noqa: BLE001
-            errors.append(exc)
+            out.append(exc)
 
     t = threading.Thread(target=work)
     t.start()
-    t.join()
-    assert errors == []
+    t.join(timeout=30)
+    assert not t.is_alive()
+    return out
+
+
+def _spin(seconds: float) -> float:
+    x, t0 = np.ones(1000), time.perf_counter()
+    while time.perf_counter() - t0 < seconds:
+        x = np.sqrt(x * x)
+    return time.perf_counter() - t0
+
+
+def test_a_deadline_stops_a_block_in_another_thread(monkeypatch):
+    """A Dask worker runs a unit in a thread of its own: its deadline stops it there with
+    the same Overrun, and a thread that sleeps within its budget finishes."""
+    monkeypatch.setattr(deadline, "TICK_S", 0.05)
+
+    def busy():
+        with deadline.deadline(0.2, "threaded"):
+            return _spin(20.0)
+
+    (out,) = _in_thread(busy)
+    assert isinstance(out, deadline.Overrun), out
+    assert "threaded ran past its deadline of 0.2 s" in str(out)
+
+    def sleeping():
+        with deadline.deadline(0.05, "sleeping"):
+            time.sleep(0.4)
+        return "done"
+
+    assert _in_thread(sleeping) == ["done"]
+    time.sleep(0.2)  # no stop left pending for the thread's next code
+
+
+def test_a_threads_budget_is_its_own_cpu_time(monkeypatch):
+    """Another thread's computing does not spend a thread's budget: the thread's block,
+    which sleeps, is not stopped while the main thread computes."""
+    monkeypatch.setattr(deadline, "TICK_S", 0.05)
+    got = []
+
+    def sleeping():
+        with deadline.deadline(0.2, "sleeping"):
+            time.sleep(1.0)
+        got.append("done")
+
+    t = threading.Thread(target=sleeping)
+    t.start()
+    _spin(1.0)
+    t.join(timeout=30)
+    assert got == ["done"]
 
 
 @pytest.mark.parametrize("name", ["hertz", "pin_on_disk", "fretting_orthotropic"])

@@ -58,6 +58,16 @@ def limits_of(args: argparse.Namespace):
     return Limits.from_flags(args.max_memory, args.max_hours, args.time_factor)
 
 
+def cluster_options(p: argparse.ArgumentParser, *, workers: int) -> None:
+    """``--workers`` and ``--scheduler``: the units as tasks on a Dask cluster
+    (:mod:`reports.run.cluster`)."""
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="run the units on this Dask scheduler (e.g. tcp://host:8786)")
+    p.add_argument("--workers", type=int, default=workers,
+                   help="run the units on a LocalCluster of this many single-threaded "
+                   f"worker processes; 0 runs them in this process (default {workers})")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog=PROG, description="Verification of the half-space contact solver "
                      "against FEM and analytical references.")
@@ -105,6 +115,7 @@ def build_parser() -> argparse.ArgumentParser:
                      help="cycle-jump studies of fretting cases: also run every numerical "
                      "solver at half and a quarter of fretting.jump and write "
                      "DIR/<case>/jump_study.csv (change when J is halved, order, GCI)")
+    cluster_options(run, workers=0)
     common(run, solving=True)
 
     def results_dir(p: argparse.ArgumentParser) -> None:
@@ -122,10 +133,7 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--param", action="append", required=True,
                        metavar="KEY=START:STOP:STEP|V1,V2",
                        help="swept dotted key; repeat to zip several keys")
-    sweep.add_argument("--scheduler", metavar="ADDRESS",
-                       help="existing Dask scheduler (default: a LocalCluster)")
-    sweep.add_argument("--workers", type=int, default=2,
-                       help="LocalCluster worker processes; 0 runs serially (default 2)")
+    cluster_options(sweep, workers=2)
     sweep.add_argument("--check-serial", action="store_true",
                        help="re-run serially, check the numbers are identical and report "
                        "both wall times (DIR/<case>__sweep_*/sweep_check.json)")
@@ -159,6 +167,7 @@ def _article_parser(sub: Any, common: Any) -> None:
     art = sub.add_parser("article", help="judge the source article's claims from the results "
                          "in DIR (running what is missing) and write DIR/article.html")
     art.add_argument("--claims", metavar="N,M-K", help="the claims to judge (default: all)")
+    cluster_options(art, workers=0)
     common(art, solving=True)
 
 
@@ -182,4 +191,5 @@ def _threshold_parser(sub: Any, common: Any) -> None:
                      "(fretting), or s=V, cycle=N, step=N (default: the last)")
     thr.add_argument("--surface-depth", type=float, default=0.0, metavar="MM",
                      help="vm_max_on_surface: depth counted as the surface (default 0)")
+    cluster_options(thr, workers=0)
     common(thr, solving=True)

@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import sys
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -94,11 +96,37 @@ def cmd_run(args: argparse.Namespace) -> int:
     progress = False if args.no_progress else None
     estimated = _announce(plans)
     t0 = time.perf_counter()
-    codes = [report_runs([execute(p, args.out, progress=progress)], args.out)
-             for p in plans]  # each case reported as soon as it is done
+    with cluster(args) as dask:
+        if dask is None:
+            codes = [report_runs([execute(p, args.out, progress=progress)], args.out)
+                     for p in plans]  # each case reported as soon as it is done
+        else:
+            from reports.run.cluster import execute_cases
+
+            codes = [report_runs([r], args.out) for r in execute_cases(plans, args.out, dask)]
     print(f"run: {len(plans)} case(s) in {_duration(time.perf_counter() - t0)} (estimated "
           f"{_duration(estimated)})")
     return 2 if 2 in codes else max(codes)
+
+
+@contextmanager
+def cluster(args: argparse.Namespace) -> Iterator[Any]:
+    """The Dask cluster of ``--workers`` / ``--scheduler`` for the command, or None
+    (serial)."""
+    if _serial(args):
+        yield None
+        return
+    from reports.run.cluster import DaskExecutor
+
+    with DaskExecutor(args.scheduler, args.workers) as dask:
+        yield dask
+
+
+def _serial(args: argparse.Namespace) -> bool:
+    """Whether the units run in this process (``--workers 0`` and no ``--scheduler``)."""
+    if args.workers < 0:
+        raise UserError("--workers must be >= 0")
+    return args.workers == 0 and not args.scheduler
 
 
 #: a unit whose estimate is longer is announced before the run starts
@@ -132,14 +160,14 @@ def _announce(plans) -> float:
 
 
 def cmd_sweep(args: argparse.Namespace) -> int:
+    from reports.run.cluster import DaskExecutor
     from reports.run.plan import select_solvers
     from reports.run.runner import execute
-    from reports.run.sweep import DaskExecutor, parse_param, plan_sweep
+    from reports.run.sweep import parse_param, plan_sweep
     from reports.run.units import serial_executor
 
     params = [parse_param(p) for p in args.param]
-    if args.workers < 0:
-        raise UserError("--workers must be >= 0")
+    serial = _serial(args)
     requested = parse_solvers(args.solver)
     chosen, skipped = select_solvers(requested, relations=args.quick)
     plan = plan_sweep(args.case, params, chosen, quick=args.quick,
@@ -149,7 +177,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         print(f"{PROG}: warning: {w}", file=sys.stderr)
     progress = False if args.no_progress else None
     t0 = time.perf_counter()
-    if args.workers == 0 and not args.scheduler:
+    if serial:
         run = execute(plan, args.out, executor=serial_executor, progress=progress,
                       extra_manifest={"executor": {"scheduler": "serial", "workers": 1}})
     else:

@@ -7,7 +7,7 @@ import sys
 import time
 
 from reports.cli.parser import PROG, limits_of, parse_overrides, parse_solvers
-from reports.cli.runs import report_runs
+from reports.cli.runs import cluster, report_runs
 from reports.registry.errors import RunFailed, UserError
 
 
@@ -36,7 +36,9 @@ def cmd_threshold(args: argparse.Namespace) -> int:
                          explicit=bool(requested))
     table.existing(args.out)  # a damaged table is refused before any work
     t0 = time.perf_counter()
-    rows = th.run(request, log=None if args.no_progress else table.stderr_log)
+    with cluster(args) as dask:
+        rows = th.run(request, log=None if args.no_progress else table.stderr_log,
+                      cluster=dask)
     print(table.format_table(request, rows))
     path = table.write_rows(args.out, rows)
     print(f"threshold: {path} ({time.perf_counter() - t0:.1f} s)")
@@ -61,9 +63,10 @@ def cmd_article(args: argparse.Namespace) -> int:
     work = article.plan(args.out, args.quick, select_solvers(requested, relations=False)[0],
                         limits_of(args), claims, bool(requested))
     print(work.describe())
-    code = article.execute(work, args.out, progress=False if args.no_progress else None,
-                           report=lambda runs: report_runs(runs, args.out),
-                           log=None if args.no_progress else stderr_log)
+    with cluster(args) as dask:
+        code = article.execute(work, args.out, progress=False if args.no_progress else None,
+                               report=lambda runs: report_runs(runs, args.out),
+                               log=None if args.no_progress else stderr_log, cluster=dask)
     path, findings = judge_and_write(args.out, args.quick, claims)
     for n, f in findings.items():
         print(f"claim {n:2d}: {f.verdict} — {f.why}")

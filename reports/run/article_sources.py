@@ -9,6 +9,7 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from pathlib import Path
+from typing import Any
 
 import pandas as pd
 
@@ -197,16 +198,24 @@ def plan(out: Path, quick: bool, chosen: list[str], limits: Limits,
 
 
 def execute(work: Work, out: Path, *, progress: bool | None,
-            report: Callable[[list], int], log: Callable[[str], None] | None) -> int:
-    """Run the plans and thresholds of ``work``; the worst exit status of the runs."""
+            report: Callable[[list], int], log: Callable[[str], None] | None,
+            cluster: Any = None) -> int:
+    """Run the plans and thresholds of ``work`` (on ``cluster``, a
+    :class:`reports.run.cluster.DaskExecutor`, where given); the worst exit status of
+    the runs."""
     from reports.run.runner import execute as run_plan
     from reports.run.threshold_table import write_rows
 
-    codes = [report([run_plan(p, out, progress=progress)]) for p in work.plans]
+    if cluster is None:
+        codes = [report([run_plan(p, out, progress=progress)]) for p in work.plans]
+    else:
+        from reports.run.cluster import execute_cases
+
+        codes = [report([r]) for r in execute_cases(work.plans, out, cluster)]
     found: dict[tuple[str, str], list[str]] = {}
     guesses: dict = {}  # each output cycle's bisection searched from the one before
     for k, request in enumerate(work.requests):
-        rows = th.run(request, guesses=guesses)
+        rows = th.run(request, guesses=guesses, cluster=cluster)
         write_rows(out, rows)
         group = (Path(request.case).stem, request.event)
         found.setdefault(group, []).extend(

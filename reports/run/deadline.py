@@ -14,20 +14,25 @@ way it inflates wall time:
   process more).  This stops a run that waits forever (a deadlock, a sleep, a lost
   sub-process), which spends no CPU time and so would never reach its budget.
 
-A watchdog thread measures both once a second and, when one is met, delivers one alarm
-signal to the main thread, which raises :class:`Overrun` naming the reason; so the stop
-holds where runs are made in the main thread (``run``, ``sweep --workers 0``,
-``threshold``).  A Dask sweep waits on its tasks for the sum of their budgets in wall time.
+A watchdog thread measures both once a second and, when one is met, stops the block: in
+the main thread (``run``, ``sweep --workers 0``, ``threshold``) by one alarm signal, whose
+handler raises :class:`Overrun` naming the reason; in another thread (a Dask worker's task,
+``--workers``) by an asynchronous exception raised in that thread at its next Python
+instruction, turned into the same :class:`Overrun` (a long call into compiled code is
+stopped when it returns).  In the main thread the CPU time is the process's and its
+children's; in another it is the thread's own (a worker's other threads are not the run's).
+The client of a Dask run also waits on its tasks for the sum of their budgets in wall time.
 """
 
 from __future__ import annotations
 
+import ctypes
 import math
 import os
 import signal
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
 #: CPU time every run may take beyond its estimate: imports, start-up, writing
@@ -77,19 +82,29 @@ def cpu_seconds() -> float:
     return spent
 
 
-class _Watch:
-    """The watchdog's state: the budget, the progress window, and why it stopped."""
+def _thread_clock(ident: int) -> Callable[[], float]:
+    """The CPU time [s] of the thread ``ident`` (this process), read from any thread."""
+    clock = time.pthread_getcpuclockid(ident)
+    return lambda: time.clock_gettime(clock)
 
-    def __init__(self, limit_s: float, what: str) -> None:
-        self.limit_s, self.what = limit_s, what
-        self.start = cpu_seconds()  # the watchdog thread's own time starts at 0
+
+class _AsyncStop(Exception):
+    """Raised in a non-main thread by its watchdog; the block turns it into Overrun."""
+
+
+class _Watch:
+    """The watchdog's state: the budget, the progress window, and why it stopped;
+    ``clock`` the run's CPU time as the watchdog thread reads it."""
+
+    def __init__(self, limit_s: float, what: str, clock: Callable[[], float],
+                 start: float) -> None:
+        self.limit_s, self.what, self.clock, self.start = limit_s, what, clock, start
         self.window = [(time.monotonic(), self.start)]
         self.reason: str | None = None
 
     def look(self) -> str | None:
-        """The reason to stop now, if any (called from the watchdog thread, whose own CPU
-        time is not the run's)."""
-        now, cpu = time.monotonic(), cpu_seconds() - time.thread_time()
+        """The reason to stop now, if any (called from the watchdog thread)."""
+        now, cpu = time.monotonic(), self.clock()
         if cpu - self.start > self.limit_s:
             return (f"{self.what} ran past its deadline of {self.limit_s:.3g} s of CPU time "
                     f"(its cost estimate times the estimate's calibration factor and the "
@@ -110,21 +125,15 @@ class _Watch:
 def deadline(limit_s: float, what: str) -> Iterator[None]:
     """Raise :class:`Overrun` in the block once it has spent ``limit_s`` seconds of CPU
     time or made no progress for ``STALL_S`` seconds (the budget is unlimited when
-    infinite; no watchdog outside the main thread, where no alarm can be delivered)."""
+    infinite), in the main thread or in any other (module doc)."""
     if threading.current_thread() is not threading.main_thread():
-        yield
+        with _in_thread(limit_s, what):
+            yield
         return
-    watch = _Watch(limit_s, what)
+    # the process's CPU time, but the watchdog thread's own (it starts at 0)
+    watch = _Watch(limit_s, what, lambda: cpu_seconds() - time.thread_time(), cpu_seconds())
     done = threading.Event()
     main = threading.main_thread().ident
-
-    def watchdog() -> None:
-        while not done.wait(TICK_S):
-            reason = watch.look()
-            if reason is not None:
-                watch.reason = reason
-                signal.pthread_kill(main, signal.SIGALRM)
-                return
 
     def alarm(signum: int, frame: object) -> None:
         if watch.reason is not None and not done.is_set():
@@ -133,11 +142,61 @@ def deadline(limit_s: float, what: str) -> Iterator[None]:
             old(signum, frame)
 
     old = signal.signal(signal.SIGALRM, alarm)
-    thread = threading.Thread(target=watchdog, name="deadline", daemon=True)
+    try:
+        with _watchdog(watch, done, lambda: signal.pthread_kill(main, signal.SIGALRM)):
+            yield
+    finally:
+        signal.signal(signal.SIGALRM, old)
+
+
+@contextmanager
+def _in_thread(limit_s: float, what: str) -> Iterator[None]:
+    """The deadline in a thread other than the main one: the thread's own CPU time, and
+    an asynchronous exception to stop it."""
+    ident = threading.get_ident()
+    clock = _thread_clock(ident)
+    watch = _Watch(limit_s, what, clock, clock())
+    done = threading.Event()
+    lock = threading.Lock()  # the stop is raised only while the block runs
+
+    def stop() -> None:
+        with lock:
+            if not done.is_set():
+                ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(ident),
+                                                           ctypes.py_object(_AsyncStop))
+
+    try:
+        with _watchdog(watch, done, stop, lock):
+            yield
+    except _AsyncStop:
+        raise Overrun(watch.reason) from None
+    finally:
+        if watch.reason is not None:  # a stop not yet raised when the block ended
+            ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(ident), None)
+
+
+@contextmanager
+def _watchdog(watch: _Watch, done: threading.Event, stop: Callable[[], None],
+              lock: threading.Lock | None = None) -> Iterator[None]:
+    """A watchdog thread that calls ``stop`` once when ``watch`` finds a reason, until
+    the block ends (``done``, set under ``lock``)."""
+
+    def look() -> None:
+        while not done.wait(TICK_S):
+            reason = watch.look()
+            if reason is not None:
+                watch.reason = reason
+                stop()
+                return
+
+    thread = threading.Thread(target=look, name="deadline", daemon=True)
     thread.start()
     try:
         yield
     finally:
-        done.set()
+        if lock is None:
+            done.set()
+        else:
+            with lock:
+                done.set()
         thread.join()
-        signal.signal(signal.SIGALRM, old)

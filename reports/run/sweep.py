@@ -6,10 +6,8 @@
 grid.ny=21,41,81``.  The sweep replaces any ``[sweep]`` table of the case file, and its
 results go to ``DIR/<case>__sweep_<labels>/`` in the layout of a run.
 
-Every (sweep point, solver) is an independent task.  On a ``dask.distributed`` cluster
-(a LocalCluster of ``--workers`` single-threaded processes by default, or the scheduler
-at ``--scheduler``) the tasks run in parallel and their results are written by the
-client exactly as a serial run writes them, so the numbers are identical.
+Every (sweep point, solver) is an independent task, run on a Dask cluster
+(:mod:`reports.run.cluster`; a LocalCluster of two workers by default) or serially.
 """
 
 from __future__ import annotations
@@ -19,17 +17,14 @@ import math
 import tempfile
 import time
 import tomllib
-import uuid
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 from cases.loader import case_path, load_case, read_toml, value_label
 from cases.model import Case, CaseError
-from reports.registry import solvers
 from reports.registry.errors import RunFailed, UserError
 from reports.run.plan import CasePlan, Limits, plan_case
-from reports.run.units import UnitOutcome, run_unit, serial_executor
+from reports.run.units import serial_executor
 from reports.store import layout
 
 
@@ -140,116 +135,6 @@ def plan_sweep(ref: str | Path, params: list[tuple[str, list[Any]]], solver_name
                      points=cases, sweep=sweep,
                      dir_name=layout.sweep_dir_name(cases[0].name, [k for k, _ in params]),
                      limits=limits, explicit=explicit)
-
-
-def _thread_env() -> dict[str, str | None]:
-    """The thread-count variables of this process (None where unset)."""
-    import os
-
-    from reports.store.manifest import THREAD_VARS
-
-    return {var: os.environ.get(var) for var in THREAD_VARS}
-
-
-def worker_environ() -> dict[str, Any]:
-    """Dask's pre-spawn environment for worker processes, with the thread-count variables
-    of this process instead of Dask's default of one thread: a worker then computes with
-    the same BLAS/OpenMP threading as a serial run in this process, so the floating-point
-    results are bit-identical (a solver's reductions may depend on the thread count)."""
-    import os
-
-    import dask
-
-    from reports.store.manifest import THREAD_VARS
-
-    environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}) or {})
-    for var in THREAD_VARS:
-        if var in os.environ:
-            environ[var] = os.environ[var]
-        else:
-            environ.pop(var, None)
-    return environ
-
-
-class DaskExecutor:
-    """Run the units of a plan as tasks on a dask.distributed cluster.
-
-    With ``scheduler`` None a LocalCluster of ``workers`` single-threaded worker
-    processes is started for the duration of the ``with`` block.
-    """
-
-    def __init__(self, scheduler: str | None = None, workers: int = 2):
-        try:
-            import distributed  # noqa: F401
-        except ImportError:
-            raise UserError("sweeps on Dask need dask.distributed: "
-                            "pip install 'contact-vv[dask]' (or --workers 0 for serial)") from None
-        self.scheduler, self.workers = scheduler, workers
-        self.cluster = self.client = None
-        self.info: dict[str, Any] = {}
-
-    def __enter__(self) -> DaskExecutor:
-        from distributed import Client, LocalCluster
-
-        if self.scheduler:
-            try:
-                self.client = Client(self.scheduler, timeout="20s")
-            except OSError as exc:
-                raise UserError(f"cannot reach the Dask scheduler {self.scheduler}: {exc}") \
-                    from None
-            except (ValueError, TypeError) as exc:  # Dask's parse of the address
-                raise UserError(f"--scheduler {self.scheduler!r}: not a Dask scheduler "
-                                f"address, e.g. tcp://127.0.0.1:8786 ({exc})") from None
-        else:
-            import dask
-
-            with dask.config.set({"distributed.nanny.pre-spawn-environ": worker_environ()}):
-                self.cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1,
-                                            processes=True, dashboard_address=None)
-            self.client = Client(self.cluster)
-        workers = self.client.scheduler_info().get("workers", {})
-        self.info = {"scheduler": self.scheduler or "LocalCluster", "workers": len(workers),
-                     "threads": sum(w.get("nthreads", 0) for w in workers.values()),
-                     "worker_thread_env": self.client.run(_thread_env)}
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        if self.client is not None:
-            self.client.close()
-        if self.cluster is not None:
-            self.cluster.close()
-
-    def __call__(self, plan: CasePlan, units: list[tuple[int, str]],
-                 progress: bool) -> Iterator[UnitOutcome]:
-        """The outcomes as the tasks finish; the tasks not done by the sum of their
-        deadlines (:mod:`reports.run.deadline`, as if run one after the other) are
-        cancelled and reported as stopped."""
-        from distributed import TimeoutError as DaskTimeout
-        from distributed import as_completed
-
-        fns = {s: solvers.resolve(s) for s in {s for _, s in units}}
-        tag = uuid.uuid4().hex[:8]
-        futures = [self.client.submit(run_unit, fns[s], plan.points[i], s, i, False,
-                                      pure=False, key=f"{plan.dir_name}-{i}-{s}-{tag}")
-                   for i, s in units]
-        limit = sum(plan.limits.deadline(plan.points[i], s) for i, s in units)
-        done: set[tuple[int, str]] = set()
-        try:
-            for future in as_completed(futures, timeout=limit if math.isfinite(limit)
-                                       else None):
-                outcome = future.result()
-                done.add((outcome.index, outcome.solver))
-                yield outcome
-        except DaskTimeout:
-            for i, s in units:
-                if (i, s) not in done:
-                    yield UnitOutcome(i, s, plan.points[i].param, None, limit, kind="overrun",
-                                      error=f"the sweep's tasks ran past their deadline of "
-                                      f"{limit:.3g} s (the sum of their cost estimates times "
-                                      "their calibration factors); stopped")
-        finally:
-            for future in futures:
-                future.cancel()
 
 
 def check_serial(plan: CasePlan, path: Path, wall: float) -> dict[str, Any]:

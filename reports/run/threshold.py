@@ -25,21 +25,29 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 from cases.loader import case_path, load_case
 from cases.model import Case, CaseError
-from cases.schema import SCHEMA, read_toml
+from cases.schema import read_toml
 from reports.registry import solvers
 from reports.registry.errors import UserError
 from reports.registry.record import grid_cell
 from reports.registry.tolerances import check_keys
 from reports.run.plan import Limits, check_fits
+from reports.run.threshold_request import (  # noqa: F401 (the request's names, here too)
+    COLUMNS,
+    DEFAULT_GRIDS,
+    DEFAULTS,
+    Request,
+    bracket,
+    check_param,
+    parse_grids,
+)
 from reports.run.units import run_unit
 from reports.studies import events
 from reports.studies.events import (
-    EventOptions,
     EventUndefined,
     Exact,
     Guess,
@@ -47,88 +55,6 @@ from reports.studies.events import (
     bisect,
     event,
 )
-
-#: default (bracket, resolution) per parameter
-DEFAULTS: dict[str, tuple[tuple[float, float], float]] = {
-    **{f"friction.{k}": ((0.0, 1.0), 0.01) for k in ("mu", "mu1", "mu2")},
-    "friction.beta": ((0.0, 90.0), 1.0)}
-#: the case grid and one coarser by 1.5
-DEFAULT_GRIDS = (1.0, 1.0 / 1.5)
-COLUMNS = ["case", "point", "event", "param", "at", "quick", "solver", "grid", "refine",
-           "cell_size", "threshold", "uncertainty", "resolution", "lo", "hi", "range_lo",
-           "range_hi", "evaluations", "grid_shift", "status", "wall_s"]
-
-
-# ------------------------------------------------------------------ the request
-
-
-@dataclass(frozen=True)
-class Request:
-    """What ``contact-vv threshold`` was asked for (module doc)."""
-
-    case: str
-    param: str
-    event: str
-    lo: float
-    hi: float
-    resolution: float
-    grids: tuple[float, ...] = DEFAULT_GRIDS
-    solvers: tuple[str, ...] = field(default_factory=lambda: tuple(
-        s for s in solvers.names() if not solvers.record(s).base))
-    quick: bool = False
-    overrides: dict[str, Any] = field(default_factory=dict)
-    options: EventOptions = EventOptions()
-    limits: Limits | None = None
-    explicit: bool = True  # the solvers were named (--solver): optional ones run too
-
-
-def check_param(param: str) -> None:
-    """UserError unless ``param`` is a real-valued dotted key of the case schema."""
-    node: Any = SCHEMA
-    for part in param.split("."):
-        if not isinstance(node, dict) or part not in node or part in ("sweep", "quick"):
-            raise UserError(f"--param {param!r}: not a case key (see cases/README.md)")
-        node = node[part]
-    if node is not float:
-        raise UserError(f"--param {param!r}: not a real-valued case key (a threshold is "
-                        "bisected on a number)")
-
-
-def bracket(param: str, given: tuple[float, float] | None, resolution: float | None
-            ) -> tuple[float, float, float]:
-    """(lo, hi, resolution): the given ones, else the defaults of ``param``."""
-    default = DEFAULTS.get(param)
-    if default is None and (given is None or resolution is None):
-        raise UserError(f"--param {param}: no default bracket; give --range LO HI and "
-                        "--resolution R")
-    lo, hi = given if given is not None else default[0]
-    res = resolution if resolution is not None else default[1]
-    if not (math.isfinite(lo) and math.isfinite(hi) and lo < hi):
-        raise UserError(f"--range {lo:g} {hi:g}: needs finite LO < HI")
-    if not (math.isfinite(res) and 0 < res < hi - lo):
-        raise UserError(f"--resolution {res:g}: needs 0 < R < HI - LO = {hi - lo:g}")
-    return lo, hi, res
-
-
-def parse_grids(text: str | None) -> tuple[float, ...]:
-    """``--grids F1,F2``: refinement factors (1 the case grid, 1.5 finer by 1.5, 1/1.5
-    or 0.5 coarser); a factor may be written ``A/B``."""
-    if text is None:
-        return DEFAULT_GRIDS
-    out = []
-    for token in (t.strip() for t in text.split(",") if t.strip()):
-        num, slash, den = token.partition("/")
-        try:
-            f = float(num) / (float(den) if slash else 1.0)
-        except (ValueError, ZeroDivisionError):
-            raise UserError(f"--grids {text!r}: {token!r} is not a number or A/B") from None
-        if not (math.isfinite(f) and f > 0):
-            raise UserError(f"--grids {text!r}: {token!r} must be positive")
-        out.append(f)
-    if not out or len(set(out)) != len(out):
-        raise UserError(f"--grids {text!r}: needs distinct factors")
-    return tuple(out)
-
 
 # ------------------------------------------------------------------ evaluation
 
@@ -151,6 +77,9 @@ class Unit:
     evaluations: int = 0
     wall_s: float = 0.0
     at_label: str = ""
+    #: runs one evaluation (:func:`reports.run.units.run_unit`'s signature): in this
+    #: process, or as a task on a cluster (:meth:`reports.run.cluster.DaskExecutor.evaluate`)
+    evaluate: Callable[..., Any] = run_unit
 
     def case(self, value: float) -> Case:
         """The case at ``param`` = ``value`` on this unit's grid (validated)."""
@@ -169,9 +98,8 @@ class Unit:
         r = self.request
         case = self.case(value)
         t0 = time.perf_counter()
-        outcome = run_unit(solvers.resolve(self.solver), case, self.solver, self.point,
-                           progress=False, on_output=None,
-                           limit_s=(r.limits or Limits()).deadline(case, self.solver))
+        outcome = self.evaluate(solvers.resolve(self.solver), case, self.solver, self.point,
+                                False, None, (r.limits or Limits()).deadline(case, self.solver))
         if outcome.result is None:
             where = f" [{self.point_label}]" if self.point_label else ""
             text = (f"solver {self.solver}{where} at {r.param} = {value:g} on "
@@ -242,8 +170,9 @@ def _exact_row(unit: Unit) -> dict[str, Any] | None:
     return row
 
 
-def make_units(request: Request) -> list[Unit]:
-    """Every (point, solver, grid) of ``request``; UserError if the event does not apply."""
+def make_units(request: Request, evaluate: Callable[..., Any] = run_unit) -> list[Unit]:
+    """Every (point, solver, grid) of ``request``, evaluated by ``evaluate``; UserError if
+    the event does not apply."""
     for value in (request.hi, request.lo):
         try:
             points = load_case(request.case, quick=request.quick,
@@ -259,7 +188,7 @@ def make_units(request: Request) -> list[Unit]:
     labels = [c.param if key and key != request.param else "" for c in points]
     order = [s for s in solvers.names()  # a metamorphic relation has no threshold of its own
              if s in request.solvers and not solvers.record(s).base]
-    return [Unit(request, i, labels[i], s, f)
+    return [Unit(request, i, labels[i], s, f, evaluate=evaluate)
             for i in range(len(points)) for s in order for f in request.grids]
 
 
@@ -308,7 +237,8 @@ def guess_key(unit: Unit) -> tuple:
 
 
 def run(request: Request, log: Callable[[str], None] | None = None,
-        guesses: dict[tuple, Guess] | None = None) -> list[dict[str, Any]]:
+        guesses: dict[tuple, Guess] | None = None, cluster: Any = None
+        ) -> list[dict[str, Any]]:
     """The threshold rows of ``request`` (module doc): UserError if the event does not
     change over the bracket for some unit, or if no solver can say anything of it; a unit
     whose solver fails has a ``failed`` row.
@@ -318,19 +248,19 @@ def run(request: Request, log: Callable[[str], None] | None = None,
     from that threshold (:func:`reports.studies.events.bisect`): the same interval where
     the event changes once in the bracket, in 2 evaluations when it has not moved.  Its
     ends are evaluated only if the search reaches them; the first unit of each has them
-    evaluated before any bisection, so that a bracket without a change fails early."""
+    evaluated before any bisection, so that a bracket without a change fails early.
+
+    The units of one (point, solver) run one after the other; with a ``cluster``
+    (:class:`reports.run.cluster.DaskExecutor`) those of different ones at once, each
+    evaluation a task: the same evaluations, so the same rows."""
     guesses = {} if guesses is None else guesses
-    ends: list[tuple[Unit, tuple[bool | None, bool | None] | dict[str, Any]]] = []
-    skip: set[tuple[int, str]] = set()  # a solver that cannot say: one row, not one a grid
-    ahead: set[tuple] = set(guesses)  # (point, solver)s whose later units will have a guess
-    for u in make_units(request):
-        if (u.point, u.solver) not in skip:
-            ends.append((u, _ends(u, evaluate=guess_key(u) not in ahead)))
-            if isinstance(ends[-1][1], dict):
-                if not ends[-1][1]["status"].startswith("fail"):
-                    skip.add((u.point, u.solver))
-            else:
-                ahead.add(guess_key(u))
+    groups: dict[tuple, list[Unit]] = {}
+    for u in make_units(request, run_unit if cluster is None else cluster.evaluate):
+        groups.setdefault(guess_key(u), []).append(u)
+    mapped = (lambda f, xs: [f(x) for x in xs]) if cluster is None else cluster.map
+    ahead = set(guesses)  # the groups whose units will all have a guess
+    ends = [e for g in mapped(lambda g: _group_ends(g, ahead), list(groups.values()))
+            for e in g]
     said = [e for _, e in ends if isinstance(e, dict)]
     if ends and len(said) == len(ends) and all(e["status"].startswith(NOTHING) for e in said):
         why = "; ".join(dict.fromkeys(f"{e['solver']}: {e['status']}" for e in said))
@@ -341,16 +271,43 @@ def run(request: Request, log: Callable[[str], None] | None = None,
              if isinstance(e, tuple) and e[0] is not None and e[0] == e[1]]
     if stuck:
         raise _no_change(request, stuck)
+    by_group: dict[tuple, list] = {}
+    for u, e in ends:
+        by_group.setdefault(guess_key(u), []).append((u, e))
+    rows = [r for g in mapped(lambda g: _group_rows(g, guesses, log), list(by_group.values()))
+            for r in g]
+    return add_grid_shift(rows)
+
+
+def _group_ends(units: list[Unit], ahead: set[tuple]) -> list[tuple[Unit, Any]]:
+    """The ends (:func:`_ends`) of the units of one (point, solver), in order: the first
+    evaluates them unless the group has a guess; after a unit that cannot say, the
+    others are left out (one row, not one a grid)."""
+    out: list[tuple[Unit, Any]] = []
+    known = bool(units) and guess_key(units[0]) in ahead
+    for u in units:
+        out.append((u, _ends(u, evaluate=not known)))
+        if not isinstance(out[-1][1], dict):
+            known = True  # evaluated (or searched from a guess): the next units search
+        elif not out[-1][1]["status"].startswith("fail"):
+            break
+    return out
+
+
+def _group_rows(ends: list[tuple[Unit, Any]], guesses: dict[tuple, Guess],
+                log: Callable[[str], None] | None) -> list[dict]:
+    """The rows of the units of one (point, solver), bisected in order (each from the
+    last one's threshold), the closed form's exact row first; each logged when done."""
     rows = []
     for u, e in ends:
-        if solvers.record(u.solver).closed_form and u.factor == request.grids[0]:
+        if solvers.record(u.solver).closed_form and u.factor == u.request.grids[0]:
             exact = _exact_row(u)
             if exact is not None:
                 rows.append(exact)
         rows.append(e if isinstance(e, dict) else _bisect_unit(u, e, guesses))
         if log is not None:
             log(row_line(rows[-1]))
-    return add_grid_shift(rows)
+    return rows
 
 
 def row_line(row: dict[str, Any]) -> str:

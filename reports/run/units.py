@@ -41,7 +41,7 @@ class UnitOutcome:
 
 
 #: how the units of a plan are run (in this process, :func:`serial_executor`; on a Dask
-#: cluster, :class:`reports.run.sweep.DaskExecutor`): (plan, units, progress) -> outcomes
+#: cluster, :class:`reports.run.cluster.DaskExecutor`): (plan, units, progress) -> outcomes
 Executor = Callable[[CasePlan, list[tuple[int, str]], bool], Iterable[UnitOutcome]]
 
 

@@ -1,0 +1,205 @@
+"""Units run as tasks on a Dask cluster: ``run``, ``sweep`` and ``threshold`` with
+``--workers N`` (a LocalCluster of N single-threaded worker processes) or ``--scheduler
+ADDRESS`` (a running cluster).  Every unit is a task that runs under its own deadline and
+returns its outcome; the client writes the results exactly as a serial run writes them,
+so the numbers are identical (the workers compute with this process's thread settings).
+"""
+
+from __future__ import annotations
+
+import math
+import uuid
+from collections.abc import Iterator
+from pathlib import Path
+from typing import Any
+
+from cases.model import Case
+from reports.registry import solvers
+from reports.registry.errors import UserError
+from reports.run.plan import CasePlan
+from reports.run.units import UnitOutcome, run_unit
+
+
+def _thread_env() -> dict[str, str | None]:
+    """The thread-count variables of this process (None where unset)."""
+    import os
+
+    from reports.store.manifest import THREAD_VARS
+
+    return {var: os.environ.get(var) for var in THREAD_VARS}
+
+
+def worker_environ() -> dict[str, Any]:
+    """Dask's pre-spawn environment for worker processes, with the thread-count variables
+    of this process instead of Dask's default of one thread: a worker then computes with
+    the same BLAS/OpenMP threading as a serial run in this process, so the floating-point
+    results are bit-identical (a solver's reductions may depend on the thread count)."""
+    import os
+
+    import dask
+
+    from reports.store.manifest import THREAD_VARS
+
+    environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ", {}) or {})
+    for var in THREAD_VARS:
+        if var in os.environ:
+            environ[var] = os.environ[var]
+        else:
+            environ.pop(var, None)
+    return environ
+
+
+#: the Dask worker resource a unit's memory estimate [bytes] is requested from, where the
+#: workers declare it (``dask worker ... --resources MEMORY=32e9``)
+MEMORY = "MEMORY"
+
+
+class DaskExecutor:
+    """Run the units of a plan as tasks on a dask.distributed cluster, each under its
+    deadline (:mod:`reports.run.deadline`) and placed by its cost estimate
+    (:meth:`_placement`).
+
+    With ``scheduler`` None a LocalCluster of ``workers`` single-threaded worker
+    processes is started for the duration of the ``with`` block.
+    """
+
+    def __init__(self, scheduler: str | None = None, workers: int = 2):
+        try:
+            import distributed  # noqa: F401
+        except ImportError:
+            raise UserError("sweeps on Dask need dask.distributed: "
+                            "pip install 'contact-vv[dask]' (or --workers 0 for serial)") from None
+        self.scheduler, self.workers = scheduler, workers
+        self.cluster = self.client = None
+        self.info: dict[str, Any] = {}
+
+    def __enter__(self) -> DaskExecutor:
+        from distributed import Client, LocalCluster
+
+        if self.scheduler:
+            try:
+                self.client = Client(self.scheduler, timeout="20s")
+            except OSError as exc:
+                raise UserError(f"cannot reach the Dask scheduler {self.scheduler}: {exc}") \
+                    from None
+            except (ValueError, TypeError) as exc:  # Dask's parse of the address
+                raise UserError(f"--scheduler {self.scheduler!r}: not a Dask scheduler "
+                                f"address, e.g. tcp://127.0.0.1:8786 ({exc})") from None
+        else:
+            import dask
+
+            with dask.config.set({"distributed.nanny.pre-spawn-environ": worker_environ()}):
+                self.cluster = LocalCluster(n_workers=self.workers, threads_per_worker=1,
+                                            processes=True, dashboard_address=None)
+            self.client = Client(self.cluster)
+        workers = self.client.scheduler_info().get("workers", {})
+        self.info = {"scheduler": self.scheduler or "LocalCluster", "workers": len(workers),
+                     "threads": sum(w.get("nthreads", 0) for w in workers.values()),
+                     "worker_thread_env": self.client.run(_thread_env)}
+        declared = [w.get("resources", {}).get(MEMORY) for w in workers.values()]
+        self.memory = max((float(m) for m in declared if m), default=None)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        import logging
+
+        # a worker's last heartbeat to a scheduler that has just closed is logged as an
+        # error with its traceback; the run is over by then, and the report is quiet
+        quiet = logging.getLogger("distributed")
+        level = quiet.level
+        quiet.setLevel(logging.CRITICAL)
+        try:
+            if self.client is not None:
+                self.client.close()
+            if self.cluster is not None:
+                self.cluster.close()
+        finally:
+            quiet.setLevel(level)
+
+    def _placement(self, case: Case, solver: str) -> dict[str, Any]:
+        """A unit's Dask priority, its estimated seconds (the longest first, so that the
+        cluster does not wait on the last long run), and, where the workers declare a
+        :data:`MEMORY` resource, its estimated memory (at most the largest worker's), so
+        that two large runs do not share a worker's memory."""
+        cost = solvers.estimate(solver, case)
+        if cost is None:
+            return {"priority": 0}
+        out: dict[str, Any] = {"priority": int(min(cost.seconds, 1e9))}
+        if self.memory is not None and math.isfinite(cost.memory):
+            out["resources"] = {MEMORY: min(float(cost.memory), self.memory)}
+        return out
+
+    def evaluate(self, fn: Any, case: Case, solver: str, index: int, progress: bool = False,
+                 on_output: Any = None, limit_s: float = math.inf) -> UnitOutcome:
+        """:func:`~reports.run.units.run_unit` as one task, waited for (a threshold's
+        evaluation: :func:`reports.run.threshold.run`); its output steps are not
+        streamed (``on_output`` must be None)."""
+        if on_output is not None:
+            raise ValueError("a cluster's evaluation streams no output steps")
+        future = self.client.submit(run_unit, fn, case, solver, index, False, None, limit_s,
+                                    pure=False, **self._placement(case, solver))
+        return future.result()
+
+    def map(self, fn: Any, items: list[Any]) -> list[Any]:
+        """``[fn(x) for x in items]``, each call in a client thread of its own, so that
+        the tasks they submit run at once; the first exception is raised."""
+        from concurrent.futures import ThreadPoolExecutor
+
+        if len(items) <= 1:
+            return [fn(x) for x in items]
+        with ThreadPoolExecutor(max_workers=len(items), thread_name_prefix="group") as pool:
+            return list(pool.map(fn, items))
+
+    def __call__(self, plan: CasePlan, units: list[tuple[int, str]],
+                 progress: bool) -> Iterator[UnitOutcome]:
+        """The outcomes as the tasks finish; the tasks not done by the sum of their
+        deadlines (:mod:`reports.run.deadline`, as if run one after the other) are
+        cancelled and reported as stopped."""
+        from distributed import TimeoutError as DaskTimeout
+        from distributed import as_completed
+
+        fns = {s: solvers.resolve(s) for s in {s for _, s in units}}
+        tag = uuid.uuid4().hex[:8]
+        futures = [self.client.submit(run_unit, fns[s], plan.points[i], s, i, False, None,
+                                      plan.limits.deadline(plan.points[i], s), pure=False,
+                                      key=f"{plan.dir_name}-{i}-{s}-{tag}",
+                                      **self._placement(plan.points[i], s))
+                   for i, s in units]
+        limit = sum(plan.limits.deadline(plan.points[i], s) for i, s in units)
+        done: set[tuple[int, str]] = set()
+        try:
+            for future in as_completed(futures, timeout=limit if math.isfinite(limit)
+                                       else None):
+                outcome = future.result()
+                done.add((outcome.index, outcome.solver))
+                yield outcome
+        except DaskTimeout:
+            for i, s in units:
+                if (i, s) not in done:
+                    yield UnitOutcome(i, s, plan.points[i].param, None, limit, kind="overrun",
+                                      error=f"the sweep's tasks ran past their deadline of "
+                                      f"{limit:.3g} s (the sum of their cost estimates times "
+                                      "their calibration factors); stopped")
+        finally:
+            for future in futures:
+                future.cancel()
+
+
+def execute_cases(plans: list[CasePlan], out: Path, executor: DaskExecutor
+                  ) -> Iterator[Any]:
+    """Run the cases of ``plans`` at once through ``executor``: each case's units and
+    studies are submitted as soon as its previous stage is done (one client thread per
+    case), so the cluster holds the units of every case and runs the longest first;
+    yields each case's :class:`~reports.run.runner.CaseRun` as it completes.  Each
+    case's directory is written by the client as a serial run writes it."""
+    from concurrent.futures import ThreadPoolExecutor, as_completed
+
+    from reports.run.runner import execute
+
+    extra = {"executor": executor.info}
+    with ThreadPoolExecutor(max_workers=max(len(plans), 1),
+                            thread_name_prefix="case") as pool:
+        futures = [pool.submit(execute, p, out, executor=executor, progress=False,
+                               extra_manifest=extra) for p in plans]
+        for future in as_completed(futures):
+            yield future.result()
