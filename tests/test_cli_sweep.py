@@ -47,15 +47,27 @@ def test_sweep_points_replace_the_file_sweep(tmp_path):
 
 
 def test_workers_get_this_process_thread_settings(monkeypatch):
+    """The thread-count variables of this process, and the counts it limits at run time
+    where no variable sets them, are the workers'; nothing else of Dask's is changed."""
     pytest.importorskip("distributed")
+    import os
+
+    from threadpoolctl import threadpool_limits
+
     from reports.run.cluster import worker_environ
 
+    cores = os.cpu_count() or 1
     monkeypatch.setenv("OPENBLAS_NUM_THREADS", "3")
     monkeypatch.delenv("OMP_NUM_THREADS", raising=False)
-    env = worker_environ()
+    with threadpool_limits(cores):  # as a process nothing limits (the tests limit BLAS)
+        env = worker_environ()
     assert env["OPENBLAS_NUM_THREADS"] == "3"
     assert "OMP_NUM_THREADS" not in env  # Dask's default of 1 removed: library default
     assert "MALLOC_TRIM_THRESHOLD_" in env  # Dask's other settings kept
+    monkeypatch.delenv("OPENBLAS_NUM_THREADS")
+    if cores > 1:
+        with threadpool_limits(1, user_api="blas"):
+            assert worker_environ()["OPENBLAS_NUM_THREADS"] == "1"
 
 
 def test_dask_sweep_matches_serial(tmp_path, monkeypatch, capsys):

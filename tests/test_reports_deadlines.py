@@ -1,10 +1,10 @@
-"""A deadline stops a hung run, never a slow one (issues 31 and 59,
+"""A deadline stops a hung run, never a slow one (issues 31, 59 and 62,
 reports/run/deadline.py): a solver that spends more CPU time than its calibrated budget,
-or that makes no progress, is stopped and its run fails naming the reason, in ``run``,
-``sweep --workers 0`` and ``threshold``; a run that a busy machine stretches over many
-times its budget in wall time, while computing, finishes; ``--time-factor`` scales the
-budget for a slower processor; the real solvers' estimates are calibrated (finite
-deadlines), the closed form's are not.
+or that makes no progress, is stopped and its run fails naming the reason, in ``run``
+(serially or in a Dask worker), ``sweep --workers 0`` and ``threshold``; a run that a
+busy machine stretches over many times its budget in wall time, while computing,
+finishes; ``--time-factor`` scales the budget for a slower processor; the real solvers'
+estimates are calibrated (finite deadlines), the closed form's are not.
 """
 
 from __future__ import annotations
@@ -52,6 +52,7 @@ def slow(monkeypatch):
     ["run", "{case}"],
     ["sweep", "{case}", "--param", "grid.nx=21,23", "--workers", "0"],
     ["run", "{case}", "--convergence"],
+    ["run", "{case}", "--workers", "2"],  # in a Dask worker's thread (reports/run/cluster.py)
 ])
 def test_a_run_past_its_deadline_is_stopped(tmp_path, capsys, slow, command):
     (tmp_path / "c.toml").write_text(CASE)

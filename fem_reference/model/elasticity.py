@@ -149,10 +149,15 @@ def stress_from_gradient(grad_u: np.ndarray, nu: float, E: float = 1.0) -> np.nd
 #: machine is busy, and the factors then differ in the last digits (measured: σ_VM,max
 #: of the quick dissimilar case 2.6e-12 apart between 1 and 2 threads)
 PARDISO_THREADS = 2
+#: MKL's conditional numerical reproducibility (``MKL_CBWR``) unless the environment sets
+#: it: without it MKL's code path depends on the alignment of the arrays it is given, so
+#: the same run in another process (a Dask worker) differed in the last bit of a few values
+CBWR = "AUTO"
 
 
 def _pardiso_solver():
-    """A new symmetric positive-definite PARDISO solver on :data:`PARDISO_THREADS`.
+    """A new symmetric positive-definite PARDISO solver on :data:`PARDISO_THREADS`, with
+    MKL in its reproducible mode (:data:`CBWR`).
 
     pypardiso searches the whole Python prefix for MKL's ``mkl_rt`` on every instance
     (seconds) unless ``PYPARDISO_MKL_RT`` names it; the first instance records the
@@ -160,6 +165,7 @@ def _pardiso_solver():
     """
     import os
 
+    os.environ.setdefault("MKL_CBWR", CBWR)  # read when MKL loads, below
     import pypardiso
 
     solver = pypardiso.PyPardisoSolver(mtype=2)

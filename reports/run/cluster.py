@@ -29,11 +29,18 @@ def _thread_env() -> dict[str, str | None]:
     return {var: os.environ.get(var) for var in THREAD_VARS}
 
 
+#: the thread-count variable of each threading library threadpoolctl reports
+LIBRARY_VARS = {"openblas": "OPENBLAS_NUM_THREADS", "mkl": "MKL_NUM_THREADS",
+                "openmp": "OMP_NUM_THREADS"}
+
+
 def worker_environ() -> dict[str, Any]:
-    """Dask's pre-spawn environment for worker processes, with the thread-count variables
-    of this process instead of Dask's default of one thread: a worker then computes with
-    the same BLAS/OpenMP threading as a serial run in this process, so the floating-point
-    results are bit-identical (a solver's reductions may depend on the thread count)."""
+    """Dask's pre-spawn environment for worker processes, with the thread counts of this
+    process instead of Dask's default of one thread: its thread-count variables, and the
+    count of a library this process limits at run time (threadpoolctl) where no variable
+    sets it.  A worker then computes with the same BLAS/OpenMP threading as a serial run
+    in this process, so the floating-point results are bit-identical (a solver's
+    reductions may depend on the thread count)."""
     import os
 
     import dask
@@ -46,6 +53,15 @@ def worker_environ() -> dict[str, Any]:
             environ[var] = os.environ[var]
         else:
             environ.pop(var, None)
+    try:
+        from threadpoolctl import threadpool_info
+    except ImportError:  # pragma: no cover - a dependency
+        return environ
+    for pool in threadpool_info():
+        var = LIBRARY_VARS.get(pool.get("internal_api", ""))
+        count = pool.get("num_threads")
+        if var and var not in os.environ and count and count < (os.cpu_count() or count):
+            environ[var] = str(min(count, int(environ.get(var, count))))
     return environ
 
 
