@@ -38,6 +38,20 @@ STRESS_COMPONENTS = ("sxx", "syy", "szz", "sxy", "sxz", "syz")
 OPEN, STICK, SLIP = 0, 1, 2  # the surface field ``state`` of every solver
 #: the columns of an event (``events.csv`` adds ``case, solver, param`` before them)
 EVENT_COLUMNS = ["event", "cycle", "cycle_resolution", "detail"]
+#: a fretting run's ``cycles`` table, one row per simulated cycle: the real cycle count at
+#: its end, the dissipated energy [N mm], the least stick area over its steps [mm²],
+#: ``gross_slip`` (1 gross, 0 partial, NaN no contact), w_max [mm], the stick areas at
+#: -A and +A [mm²], the least P [N] and the least contact area [mm²] over its steps
+CYCLE_COLUMNS = ("cycle", "energy", "min_stick_area", "gross_slip", "w_max",
+                 "stick_area_neg", "stick_area_pos", "P_min", "contact_area_min")
+#: a fretting run's ``loops`` table, one row per step: real cycle, imposed displacement,
+#: tangential loads [N]
+LOOP_COLUMNS = ("cycle", "displacement", "Qx", "Qy")
+#: the event ``load_lost``: under a held approach the least P of a cycle falls below this
+#: fraction of P0, the load after the initial loading (the contact then carries too little
+#: load for its tractions, stresses and wear to matter; P itself only decays geometrically
+#: under implicit wear, and reaches 0 only when the contact is worn through)
+LOAD_LOST_FRACTION = 0.01
 
 
 def von_mises(sxx, syy, szz, sxy, sxz, syz):

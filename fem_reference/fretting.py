@@ -34,7 +34,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from cases.result import STICK, RunEvent
+from cases.result import CYCLE_COLUMNS, LOAD_LOST_FRACTION, LOOP_COLUMNS, STICK, RunEvent
 from cases.steps import fretting_outputs
 
 from .contact.augmented import Control, Solution
@@ -49,13 +49,6 @@ from .loading import (
 )
 from .model.shape import slide_direction, wear_norms
 from .run import OutputState, Run
-
-#: "load lost": under a held approach the least P of a cycle below this fraction of the
-#: load after the initial loading (the same definition as the half-space solver's)
-LOAD_LOST = 0.01
-
-CYCLE_COLUMNS = ("cycle", "energy", "min_stick_area", "gross_slip", "w_max",
-                 "stick_area_neg", "stick_area_pos", "P_min", "contact_area_min")
 
 
 def fretting_control(run: Run, shift: float) -> Control:
@@ -179,9 +172,9 @@ class Events:
     the real cycle min(nJ, cycles) with resolution J (docs: reports/README.md, events):
     ``gross_to_partial_slip`` / ``partial_to_gross_slip`` when the regime at the
     tangential extremes changes (the first cycle against the initial loading), and
-    under a held approach ``load_lost`` (the least P of a cycle below :data:`LOAD_LOST`
-    of P0, the load after the initial loading) and ``contact_worn_through`` (a step
-    without a node in contact), each once."""
+    under a held approach ``load_lost`` (the least P of a cycle below
+    :data:`cases.result.LOAD_LOST_FRACTION` of P0, the load after the initial loading)
+    and ``contact_worn_through`` (a step without a node in contact), each once."""
 
     def __init__(self, jump: float, total: float, P0: float, regime: float,
                  held_approach: bool):
@@ -200,10 +193,10 @@ class Events:
                     f"{old}_to_{new}_slip", at, at - before,
                     f"least stick area at the extremes ±A {stick:.4g} mm² at cycle {at:g}"))
             self.regime = gross
-        if self.held and "load_lost" not in names and P_min < LOAD_LOST * self.P0:
+        if self.held and "load_lost" not in names and P_min < LOAD_LOST_FRACTION * self.P0:
             self.events.append(RunEvent(
                 "load_lost", at, at - before,
-                f"P = {P_min:.4g} N < {LOAD_LOST:.0%} of P0 = {self.P0:.4g} N"))
+                f"P = {P_min:.4g} N < {LOAD_LOST_FRACTION:.0%} of P0 = {self.P0:.4g} N"))
         if self.held and "contact_worn_through" not in names and contact_min <= 0.0:
             self.events.append(RunEvent("contact_worn_through", at, at - before,
                                         "no node in contact, P = 0"))
@@ -219,5 +212,5 @@ def _gross(stick: list[float], contact: list[float]) -> float:
 
 def _tables(loops: list[tuple], cycles: list[tuple]) -> dict[str, dict[str, np.ndarray]]:
     la, ca = np.array(loops), np.array(cycles)
-    return {"loops": {c: la[:, i] for i, c in enumerate(("cycle", "displacement", "Qx", "Qy"))},
+    return {"loops": {c: la[:, i] for i, c in enumerate(LOOP_COLUMNS)},
             "cycles": {c: ca[:, i] for i, c in enumerate(CYCLE_COLUMNS)}}

@@ -17,8 +17,9 @@ Fretting uses a cycle jump factor J: each simulated cycle stands for J cycles, i
 multiplied by J (results must be shown converged in J).  Every simulated cycle is
 watched for regime events (:class:`RegimeWatch`, returned in ``RunResult.events``):
 gross -> partial slip and back (stick cells at the tangential extremes ±A), and under
-a held approach the load lost (P < :data:`LOAD_LOST_FRACTION` P0) and the contact worn
-through (no contact cell), each with the real cycle at which it was seen, to within J.
+a held approach the load lost (P < :data:`cases.result.LOAD_LOST_FRACTION` P0) and the
+contact worn through (no contact cell), each with the real cycle at which it was seen,
+to within J.
 """
 
 from __future__ import annotations
@@ -33,7 +34,14 @@ import numpy as np
 from tqdm.auto import tqdm
 
 from cases.model import Case, Fretting
-from cases.result import RunEvent, RunResult, StepResult
+from cases.result import (
+    CYCLE_COLUMNS,
+    LOAD_LOST_FRACTION,
+    LOOP_COLUMNS,
+    RunEvent,
+    RunResult,
+    StepResult,
+)
 from cases.steps import fretting_outputs, sliding_outputs, sliding_steps
 
 from .contact import STICK, ContactNotConverged, ContactSolver, ContactState, StepSolution
@@ -213,10 +221,6 @@ def _shift(u: float, d: np.ndarray, free: np.ndarray | None,
     return u * d + float(free @ (start.shift_x, start.shift_y)) * free
 
 
-_CYCLE_COLUMNS = ("cycle", "energy", "min_stick_area", "gross_slip", "w_max",
-                  "stick_area_neg", "stick_area_pos", "P_min", "contact_area_min")
-
-
 def _fretting_tables(loops: list[tuple], cycles: list[tuple]) -> dict[str, dict]:
     """The ``loops`` (cycle, displacement, Qx, Qy per step) and ``cycles`` tables: per
     simulated cycle the real cycle count at its end, the dissipated energy [N mm], the
@@ -224,20 +228,12 @@ def _fretting_tables(loops: list[tuple], cycles: list[tuple]) -> dict[str, dict]
     :func:`regime`), w_max, the stick areas at -A and +A [mm²], the least P [N] and the
     least contact area [mm²] over its steps."""
     loops_a, cyc_a = np.array(loops), np.array(cycles)
-    return {
-        "loops": {"cycle": loops_a[:, 0], "displacement": loops_a[:, 1],
-                  "Qx": loops_a[:, 2], "Qy": loops_a[:, 3]},
-        "cycles": {c: cyc_a[:, i] for i, c in enumerate(_CYCLE_COLUMNS)},
-    }
+    return {"loops": {c: loops_a[:, i] for i, c in enumerate(LOOP_COLUMNS)},
+            "cycles": {c: cyc_a[:, i] for i, c in enumerate(CYCLE_COLUMNS)}}
 
 
 # ---------------------------------------------------------------------- regime events
 
-#: "load lost": under a held approach the normal load P falls below this fraction of P0,
-#: the load after the initial loading (1 %: the contact then carries too little load for
-#: its tractions, stresses and wear to matter; P itself only decays geometrically under
-#: the implicit wear, it reaches exactly 0 only when the contact is worn through)
-LOAD_LOST_FRACTION = 0.01
 GROSS, PARTIAL = "gross", "partial"
 
 
@@ -287,7 +283,7 @@ class CycleObservation:
         return self.stick[0] * self.dA, self.stick[-1] * self.dA
 
     def row(self, cycle: float, energy: float, w_max: float) -> tuple[float, ...]:
-        """The cycle's row of the ``cycles`` table (:data:`_CYCLE_COLUMNS`); its
+        """The cycle's row of the ``cycles`` table (:data:`cases.result.CYCLE_COLUMNS`); its
         ``gross_slip`` is 1 in gross slip, 0 in partial slip, NaN without contact."""
         now = self.regime()
         return (cycle, energy, self.min_stick * self.dA,
@@ -300,7 +296,7 @@ class RegimeWatch:
     at a time: ``gross_to_partial_slip`` / ``partial_to_gross_slip`` when the regime at
     the tangential extremes changes (:meth:`CycleObservation.regime`; the first cycle is
     compared with the initial loading 0 -> +A), and under a held approach ``load_lost``
-    (P below :data:`LOAD_LOST_FRACTION` P0) and ``contact_worn_through`` (no contact
+    (P below :data:`cases.result.LOAD_LOST_FRACTION` P0) and ``contact_worn_through`` (no contact
     cell), each once.
 
     Simulated cycle n stands for the real cycles (n - 1) J + 1 .. n J (J the cycle jump,

@@ -4,4 +4,17 @@ augmented Lagrangian on a penalty Newton solve (:mod:`.augmented`), the nodal co
 (:mod:`.compliance`), the kept factors and their low-rank updates (:mod:`.kept_factors`,
 :mod:`.stiffened`) and the single-threaded BLAS they run under (:mod:`.threads`).
 
-The ground room of the package: it imports no other room."""
+The ground room of the package: it imports no other room.
+
+Its public face: the modules the rest of the package imports (``__all__``,
+``tests/test_suite_public_api.py``)."""
+
+__all__ = [
+    "augmented",
+    "compliance",
+    "kept_factors",
+    "laws",
+    "relative",
+    "semismooth",
+    "stiffened",
+]

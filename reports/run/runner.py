@@ -266,3 +266,19 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     os.replace(staging, final)
     run.path, run.metrics = final, metrics
     return run
+
+
+def run_case(case: str | Path, solvers: list[str] | None = None, *,
+             out: str | Path = "results", quick: bool = False,
+             overrides: dict[str, Any] | None = None) -> CaseRun:
+    """``contact-vv run CASE`` from Python: plan the case (a bundled name or a TOML path;
+    ``solvers`` as ``--solver``, default the built-in ones; ``overrides`` as ``--set``)
+    and run it serially into ``out``; the :class:`CaseRun` says where it went or why
+    it failed (``CaseError`` on bad input)."""
+    from reports.run.plan import plan_case, select_solvers
+
+    chosen, skipped = select_solvers(list(solvers or []), relations=quick)
+    plan = plan_case(case, chosen, quick=quick, overrides=overrides, skipped=skipped,
+                     explicit=bool(solvers))
+    return execute(plan, Path(out), progress=False)
+

@@ -48,7 +48,7 @@ def other_code(folder: Path) -> Path:
 
 
 def main(argv: list[str] | None = None) -> int:
-    from reports.cli import main as contact_vv
+    from reports import main as contact_vv
 
     args = sys.argv[1:] if argv is None else argv
     folder = Path(args[0] if args else "external_example")

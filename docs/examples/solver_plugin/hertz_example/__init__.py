@@ -12,9 +12,8 @@ import math
 
 import numpy as np
 
-from cases.model import Case
-from cases.result import RunResult, StepResult
-from reports.registry.record import SolverRecord
+from cases import Case, RunResult, StepResult
+from reports import SolverRecord
 
 #: p0 is multiplied by this; a test sets 1.1 to show the gates catch a wrong solver
 SCALE = 1.0
