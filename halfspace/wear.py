@@ -141,7 +141,7 @@ def sliding_wear(case: Case, progress: bool = False,
 # ---------------------------------------------------------------------- fretting
 
 
-def fretting_path(amplitude: float, steps_per_cycle: int) -> np.ndarray:
+def cycle_path(amplitude: float, steps_per_cycle: int) -> np.ndarray:
     """Imposed displacements of one cycle +A -> -A -> +A (excluding the start +A):
     :meth:`cases.model.Fretting.cycle_path`."""
     return Fretting(amplitude=amplitude, steps_per_cycle=steps_per_cycle).cycle_path()
@@ -167,7 +167,7 @@ def fretting(case: Case, progress: bool = False,
     first = _initial_loading(case, solver, h0, normal, d, free)
     watch = RegimeWatch(case, first)
     state = first.state
-    path = fretting_path(fr.amplitude, fr.steps_per_cycle)
+    path = cycle_path(fr.amplitude, fr.steps_per_cycle)
     loops, cycles = [], []
     steps: list[StepResult] = []
     last_cycle: list[ContactState | None] = [None] * len(path)  # warm starts

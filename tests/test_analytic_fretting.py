@@ -280,7 +280,7 @@ def test_wear_volume_is_iw_times_dissipation_over_mu(f):
 
 def intended_path(amplitude: float, steps_per_cycle: int) -> np.ndarray:
     """The documented cycle +A -> -A -> +A in ``steps_per_cycle`` equal steps (excluding
-    the start), what ``halfspace.wear.fretting_path`` should return."""
+    the start), what ``halfspace.wear.cycle_path`` should return."""
     half = steps_per_cycle // 2
     down = amplitude * (1 - 2 * np.arange(1, half + 1) / half)
     return np.concatenate([down, down[::-1][1:], [amplitude]])

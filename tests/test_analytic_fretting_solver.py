@@ -61,7 +61,7 @@ def test_supports_says_why_not(cases):
 def test_the_imposed_path_is_the_solvers(cases):
     for steps in (8, 20, 22):
         np.testing.assert_array_equal(fretting_case.imposed_cycle(1.0, steps),
-                                      hw.fretting_path(1.0, steps))
+                                      hw.cycle_path(1.0, steps))
 
 
 @pytest.mark.parametrize("k", [0, 1])
@@ -108,9 +108,9 @@ def test_loop_and_energy_tables(cases, runs, k):
     ref = fretting_reference(case)
     A, mu, n = case.fretting.amplitude, case.friction.mu1, case.fretting.steps_per_cycle
     loops, cycles = run.tables["loops"], run.tables["cycles"]
-    np.testing.assert_array_equal(loops["displacement"], hw.fretting_path(A, n))
+    np.testing.assert_array_equal(loops["displacement"], hw.cycle_path(A, n))
     assert (loops["cycle"] == 1).all()
-    hist = np.concatenate([A * np.arange(0, n // 4 + 1) / (n // 4), hw.fretting_path(A, n)])
+    hist = np.concatenate([A * np.arange(0, n // 4 + 1) / (n // 4), hw.cycle_path(A, n)])
     Q = fr.md_path(hist, mu, ref.P, ref.delta_star)
     np.testing.assert_allclose(-loops["Qx"], Q[n // 4 + 1:], rtol=1e-14)
     np.testing.assert_array_equal(loops["Qy"], 0.0)

@@ -127,3 +127,29 @@ def test_a_threshold_on_workers_matches_the_serial_one():
         ("analytic", "27x27", "bisected")]
     for a, b in zip(serial, parallel, strict=True):  # the coarser grid from the first's guess
         assert pd.Series(a).drop("wall_s").equals(pd.Series(b).drop("wall_s")), (a, b)
+
+
+def test_a_unit_waiting_in_the_queue_is_not_stopped(tmp_path, monkeypatch):
+    """Three cases at once on one worker: the last case's units wait behind the others'
+    for longer than their budgets; each budget counts the unit's own CPU time, so none is
+    stopped (a wall-time limit from the submission stopped a correct chain)."""
+    from dataclasses import replace
+
+    from reports.registry import solvers
+    from reports.run import deadline
+    from reports.run.cluster import DaskExecutor, execute_cases
+    from reports.run.plan import plan_case
+
+    fakes.use(monkeypatch, ic="solve_busy", analytic="solve_exact")
+    monkeypatch.setitem(solvers.REGISTRY, "ic", replace(solvers.REGISTRY["ic"],
+                                                        estimate_attr="estimate_tiny"))
+    monkeypatch.setattr(deadline, "ALLOWANCE_S", 0.6)  # each unit's budget: 0.6 s + 0.02 s
+    monkeypatch.setenv("FAKE_SLEEP", "0.3")  # seconds of CPU time of each unit
+    plans = []
+    for name in ("one", "two", "three"):
+        (tmp_path / f"{name}.toml").write_text(SWEEP)
+        plans.append(plan_case(tmp_path / f"{name}.toml", ["ic"]))
+    with DaskExecutor(None, 1) as dask:
+        runs = list(execute_cases(plans, tmp_path / "out", dask))
+    assert all(not r.failures for r in runs), [r.failures for r in runs]
+    assert sorted(r.name for r in runs) == ["one", "three", "two"]

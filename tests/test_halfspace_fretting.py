@@ -26,7 +26,7 @@ Measured (ν = 0.3, the intended cycle +A -> -A -> +A, 20 steps per cycle; 31² 
   0.67 %.  Against the axisymmetric mean slip (λ = 0) the interior error is 11–16 % |
   3.1–3.6 %: the ν ξ²/s³ part of the Cerruti kernel (the cos 2θ term) is needed.
 
-This comparison found that ``halfspace.wear.fretting_path`` imposed +A -> -A, then
+This comparison found that ``halfspace.wear.cycle_path`` imposed +A -> -A, then
 +0.8A -> -0.8A and a jump to +A (20 steps): one "cycle" dissipated 1.49 | 1.57 times the
 cycle's energy (partial | gross slip).  Fixed; :func:`test_bundled_fretting_path_is_the_
 documented_cycle` holds it to :func:`intended_path`.
@@ -192,4 +192,4 @@ def test_ic_on_the_quick_resolution():
 
 def test_bundled_fretting_path_is_the_documented_cycle():
     for steps in (8, 20):
-        np.testing.assert_array_equal(hw.fretting_path(1.0, steps), intended_path(1.0, steps))
+        np.testing.assert_array_equal(hw.cycle_path(1.0, steps), intended_path(1.0, steps))

@@ -15,7 +15,7 @@ from analytic.wear import (
 )
 from cases import load_case
 from halfspace.friction import wear_coefficient
-from halfspace.wear import fretting_path
+from halfspace.wear import cycle_path
 
 
 def pin(quick_over=None, **over):
@@ -181,7 +181,7 @@ def test_fretting_path_is_a_closed_cycle(steps):
     """+A -> -A -> +A in equal steps: down to -A through half the steps, back up through
     the same points (a path that jumped or turned early would dissipate the wrong energy:
     tests/test_analytic_fretting.py measures the loop against Mindlin-Deresiewicz)."""
-    path = np.concatenate([[1.0], fretting_path(1.0, steps)])
+    path = np.concatenate([[1.0], cycle_path(1.0, steps)])
     assert len(path) == steps + 1 and path[-1] == 1.0 and path.min() == -1.0
     turn = int(np.argmin(path))
     assert turn == steps // 2

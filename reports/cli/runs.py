@@ -103,7 +103,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         else:
             from reports.run.cluster import execute_cases
 
-            codes = [report_runs([r], args.out) for r in execute_cases(plans, args.out, dask)]
+            codes = [report_runs([r], args.out)
+                     for r in execute_cases(plans, args.out, dask, progress)]
     print(f"run: {len(plans)} case(s) in {_duration(time.perf_counter() - t0)} (estimated "
           f"{_duration(estimated)})")
     return 2 if 2 in codes else max(codes)

@@ -168,10 +168,12 @@ class DaskExecutor:
 
     def __call__(self, plan: CasePlan, units: list[tuple[int, str]],
                  progress: bool) -> Iterator[UnitOutcome]:
-        """The outcomes as the tasks finish; the tasks not done by the sum of their
-        deadlines (:mod:`reports.run.deadline`, as if run one after the other) are
-        cancelled and reported as stopped."""
-        from distributed import TimeoutError as DaskTimeout
+        """The outcomes as the tasks finish.  Each task runs under its own deadline, on
+        the CPU time of the worker thread that runs it (:mod:`reports.run.deadline`);
+        the client sets none in wall time, which would count the time a task waits in
+        the queue behind longer ones (it stopped a correct chain that way) and a busy
+        machine's slowness.  The tasks not yet done when the caller stops are
+        cancelled."""
         from distributed import as_completed
 
         fns = {s: solvers.resolve(s) for s in {s for _, s in units}}
@@ -181,41 +183,64 @@ class DaskExecutor:
                                       key=f"{plan.dir_name}-{i}-{s}-{tag}",
                                       **self._placement(plan.points[i], s))
                    for i, s in units]
-        limit = sum(plan.limits.deadline(plan.points[i], s) for i, s in units)
-        done: set[tuple[int, str]] = set()
+        unit = {f.key: (i, s) for f, (i, s) in zip(futures, units, strict=True)}
         try:
-            for future in as_completed(futures, timeout=limit if math.isfinite(limit)
-                                       else None):
-                outcome = future.result()
-                done.add((outcome.index, outcome.solver))
+            for future in as_completed(futures):
+                try:
+                    outcome = future.result()
+                except Exception as exc:  # the cluster lost it (KilledWorker, ...)
+                    i, s = unit[future.key]
+                    outcome = UnitOutcome(i, s, plan.points[i].param, None, 0.0,
+                                          kind="internal", error="the cluster lost the run: "
+                                          f"{type(exc).__name__}: {exc}")
                 yield outcome
-        except DaskTimeout:
-            for i, s in units:
-                if (i, s) not in done:
-                    yield UnitOutcome(i, s, plan.points[i].param, None, limit, kind="overrun",
-                                      error=f"the sweep's tasks ran past their deadline of "
-                                      f"{limit:.3g} s (the sum of their cost estimates times "
-                                      "their calibration factors); stopped")
         finally:
             for future in futures:
                 future.cancel()
 
 
-def execute_cases(plans: list[CasePlan], out: Path, executor: DaskExecutor
-                  ) -> Iterator[Any]:
+def execute_cases(plans: list[CasePlan], out: Path, executor: DaskExecutor,
+                  progress: bool | None = None) -> Iterator[Any]:
     """Run the cases of ``plans`` at once through ``executor``: each case's units and
     studies are submitted as soon as its previous stage is done (one client thread per
     case), so the cluster holds the units of every case and runs the longest first;
     yields each case's :class:`~reports.run.runner.CaseRun` as it completes.  Each
-    case's directory is written by the client as a serial run writes it."""
+    case's directory is written by the client as a serial run writes it.  ``progress``
+    (None: on a terminal) shows one bar of the units done, naming the last."""
     from concurrent.futures import ThreadPoolExecutor, as_completed
+
+    from tqdm.auto import tqdm
 
     from reports.run.runner import execute
 
     extra = {"executor": executor.info}
-    with ThreadPoolExecutor(max_workers=max(len(plans), 1),
-                            thread_name_prefix="case") as pool:
-        futures = [pool.submit(execute, p, out, executor=executor, progress=False,
+    total = sum(len(p.units()) + len(p.probes) for p in plans)
+    with tqdm(total=total, desc="units", unit="run", leave=False,
+              disable=None if progress is None else not progress) as bar, \
+            ThreadPoolExecutor(max_workers=max(len(plans), 1),
+                               thread_name_prefix="case") as pool:
+        counted = _Counted(executor, bar)
+        futures = [pool.submit(execute, p, out, executor=counted, progress=False,
                                extra_manifest=extra) for p in plans]
         for future in as_completed(futures):
             yield future.result()
+
+
+class _Counted:
+    """An executor that counts the outcomes of another on a progress bar."""
+
+    def __init__(self, executor: DaskExecutor, bar: Any):
+        import threading
+
+        self.executor, self.bar, self.lock = executor, bar, threading.Lock()
+
+    def __call__(self, plan: CasePlan, units: list[tuple[int, str]],
+                 progress: bool) -> Iterator[UnitOutcome]:
+        for outcome in self.executor(plan, units, progress):
+            with self.lock:
+                if self.bar.total is not None and self.bar.n >= self.bar.total:
+                    self.bar.total = self.bar.n + 1  # a study's runs beyond the plan's
+                self.bar.update(1)
+                self.bar.set_postfix_str(f"last {plan.name} {outcome.param} "
+                                         f"{outcome.solver}".replace("  ", " "))
+            yield outcome

@@ -21,7 +21,8 @@ handler raises :class:`Overrun` naming the reason; in another thread (a Dask wor
 instruction, turned into the same :class:`Overrun` (a long call into compiled code is
 stopped when it returns).  In the main thread the CPU time is the process's and its
 children's; in another it is the thread's own (a worker's other threads are not the run's).
-The client of a Dask run also waits on its tasks for the sum of their budgets in wall time.
+A run blocked inside a system call is stopped in the main thread (the signal interrupts
+the call) but not in another thread, where the stop waits for the call to return.
 """
 
 from __future__ import annotations
