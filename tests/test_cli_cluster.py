@@ -153,3 +153,26 @@ def test_a_unit_waiting_in_the_queue_is_not_stopped(tmp_path, monkeypatch):
         runs = list(execute_cases(plans, tmp_path / "out", dask))
     assert all(not r.failures for r in runs), [r.failures for r in runs]
     assert sorted(r.name for r in runs) == ["one", "three", "two"]
+
+
+def test_units_are_placed_by_their_cost_estimates():
+    """A unit's Dask priority is its estimated seconds (the longest first); its memory
+    estimate is a resource request only where the workers declare MEMORY, capped at the
+    largest worker's."""
+    from cases.loader import load_case
+    from reports.registry import solvers
+    from reports.run.cluster import MEMORY, DaskExecutor
+
+    ex = DaskExecutor(None, 2)  # not started: placement needs no cluster
+    worn = load_case("fretting_orthotropic", quick=True)[2]
+    small = load_case("hertz", quick=True)[0]
+    ex.memory = None
+    long, short = ex._placement(worn, "fem"), ex._placement(small, "fem")
+    assert long["priority"] > short["priority"] > 0 and "resources" not in long
+    assert long["priority"] == int(solvers.estimate("fem", worn).seconds)
+    assert ex._placement(small, "analytic") == {"priority": 0}  # no estimate
+    need = solvers.estimate("fem", worn).memory
+    ex.memory = 64e9
+    assert ex._placement(worn, "fem")["resources"] == {MEMORY: need}
+    ex.memory = need / 2  # no worker has it: the largest one, alone
+    assert ex._placement(worn, "fem")["resources"] == {MEMORY: need / 2}
