@@ -1,10 +1,11 @@
 """The chain's cost on a cluster, computed from the planner's estimates (no solver runs).
 
-    python benchmarks/cluster_schedule.py [--quick] [--workers 2,16,64]
+    python benchmarks/cluster_schedule.py [--quick] [--workers 1,2,16,64]
 
 Plans ``contact-vv run --all`` (article size, or ``--quick``) with the default solvers
 and prints the planned cost (the sum of every unit's estimate, the resolution probes
-included), the critical path (the longest unit) and, for each worker count, the wall
+included), the longest unit (with its case's probes after it, a lower bound of the wall
+time on any number of workers) and, for each worker count, the wall
 time of the schedule ``reports.run.cluster`` asks Dask for: every unit ready at the
 start, a case's resolution probes once its units are done, each free worker taking the
 longest ready unit (Dask's ``priority`` = the estimate).  A simulation on paper: it
@@ -74,7 +75,7 @@ def main() -> None:
     longest = max(units, key=lambda u: u[2])
     print(f"{'quick' if args.quick else 'article-size'} chain: {len(units)} units, "
           f"planned cost {total / 3600:.2f} h ({total:.0f} s)")
-    print(f"critical path (longest unit): {longest[1]}, {longest[2] / 3600:.2f} h "
+    print(f"longest unit: {longest[1]}, {longest[2] / 3600:.2f} h "
           f"({longest[2]:.0f} s)")
     for n in (int(w) for w in args.workers.split(",")):
         span = makespan(units, n)

@@ -222,11 +222,9 @@ def _shift(u: float, d: np.ndarray, free: np.ndarray | None,
 
 
 def _fretting_tables(loops: list[tuple], cycles: list[tuple]) -> dict[str, dict]:
-    """The ``loops`` (cycle, displacement, Qx, Qy per step) and ``cycles`` tables: per
-    simulated cycle the real cycle count at its end, the dissipated energy [N mm], the
-    least stick area over its steps, ``gross_slip`` (1 gross, 0 partial, NaN no contact:
-    :func:`regime`), w_max, the stick areas at -A and +A [mm²], the least P [N] and the
-    least contact area [mm²] over its steps."""
+    """The ``loops`` table (:data:`cases.result.LOOP_COLUMNS`, a row per step) and the
+    ``cycles`` table (:data:`cases.result.CYCLE_COLUMNS`, a row per simulated cycle;
+    ``gross_slip`` by :func:`regime`)."""
     loops_a, cyc_a = np.array(loops), np.array(cycles)
     return {"loops": {c: loops_a[:, i] for i, c in enumerate(LOOP_COLUMNS)},
             "cycles": {c: cyc_a[:, i] for i, c in enumerate(CYCLE_COLUMNS)}}

@@ -237,6 +237,32 @@ def test_a_threads_budget_is_its_own_cpu_time(monkeypatch):
     assert got == ["done"]
 
 
+def test_a_thread_waiting_on_its_computing_helpers_is_not_hung(monkeypatch):
+    """A run that hands its work to a pool (the half-space solver's stress layers) and
+    waits: the process computes, so the run progresses, though its own thread does not."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    monkeypatch.setattr(deadline, "TICK_S", 0.05)
+    monkeypatch.setattr(deadline, "STALL_S", 0.5)
+
+    def waiting():
+        with deadline.deadline(math.inf, "waiting"), ThreadPoolExecutor(1) as pool:
+            return pool.submit(_spin, 1.5).result() > 1.0
+
+    assert _in_thread(waiting) == [True]
+
+
+def test_an_enclosing_deadline_stops_a_thread_with_its_own_reason(monkeypatch):
+    monkeypatch.setattr(deadline, "TICK_S", 0.05)
+
+    def nested():
+        with deadline.deadline(0.2, "outer"), deadline.deadline(math.inf, "inner"):
+            return _spin(20.0)
+
+    (out,) = _in_thread(nested)
+    assert isinstance(out, deadline.Overrun) and "outer ran past its deadline" in str(out)
+
+
 @pytest.mark.parametrize("name", ["hertz", "pin_on_disk", "fretting_orthotropic"])
 def test_the_solvers_deadlines(name):
     """ic and fem estimates are calibrated: finite deadlines, scaled by --time-factor; the

@@ -211,7 +211,7 @@ def execute(work: Work, out: Path, *, progress: bool | None,
     else:
         from reports.run.cluster import execute_cases
 
-        codes = [report([r]) for r in execute_cases(work.plans, out, cluster)]
+        codes = [report([r]) for r in execute_cases(work.plans, out, cluster, progress)]
     found: dict[tuple[str, str], list[str]] = {}
     guesses: dict = {}  # each output cycle's bisection searched from the one before
     for k, request in enumerate(work.requests):

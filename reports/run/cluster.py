@@ -1,5 +1,5 @@
-"""Units run as tasks on a Dask cluster: ``run``, ``sweep`` and ``threshold`` with
-``--workers N`` (a LocalCluster of N single-threaded worker processes) or ``--scheduler
+"""Units run as tasks on a Dask cluster: ``run``, ``article``, ``threshold`` and ``sweep``
+with ``--workers N`` (a LocalCluster of N single-threaded worker processes) or ``--scheduler
 ADDRESS`` (a running cluster).  Every unit is a task that runs under its own deadline and
 returns its outcome; the client writes the results exactly as a serial run writes them,
 so the numbers are identical (the workers compute with this process's thread settings).
@@ -83,11 +83,15 @@ class DaskExecutor:
         try:
             import distributed  # noqa: F401
         except ImportError:
-            raise UserError("sweeps on Dask need dask.distributed: "
-                            "pip install 'contact-vv[dask]' (or --workers 0 for serial)") from None
+            raise UserError("--workers and --scheduler need dask.distributed (pip install "
+                            "'dask[distributed]'); without them the units run serially") \
+                from None
         self.scheduler, self.workers = scheduler, workers
         self.cluster = self.client = None
         self.info: dict[str, Any] = {}
+        self.memory: float | None = None
+        self._live: set = set()  # the futures submitted and not yet read
+        self._stopping = False
 
     def __enter__(self) -> DaskExecutor:
         from distributed import Client, LocalCluster
@@ -145,6 +149,32 @@ class DaskExecutor:
             out["resources"] = {MEMORY: min(float(cost.memory), self.memory)}
         return out
 
+    def _submit(self, case: Case, solver: str, *args: Any, **kwargs: Any) -> Any:
+        """A task of :func:`~reports.run.units.run_unit`, placed by its estimates."""
+        if self._stopping:
+            raise _Stopped("the run is being stopped")
+        future = self.client.submit(run_unit, *args, pure=False, **kwargs,
+                                    **self._placement(case, solver))
+        self._live.add(future)
+        return future
+
+    def _read(self, future: Any, index: int, solver: str, case: Case) -> UnitOutcome:
+        """The outcome of a finished task, or a failed unit where the cluster lost it
+        (its worker died too often, it was cancelled); the future is let go."""
+        self._live.discard(future)
+        try:
+            return future.result()
+        except Exception as exc:  # noqa: BLE001 - KilledWorker, CancelledError, ...
+            return UnitOutcome(index, solver, case.param, None, 0.0, kind="internal",
+                               error=f"the cluster lost the run: {type(exc).__name__}: {exc}")
+
+    def stop(self) -> None:
+        """Cancel every task not yet read and submit no more (an error or an interrupt in
+        one of the client's threads ends the others' waits at once)."""
+        self._stopping = True
+        for future in list(self._live):
+            future.cancel()
+
     def evaluate(self, fn: Any, case: Case, solver: str, index: int, progress: bool = False,
                  on_output: Any = None, limit_s: float = math.inf) -> UnitOutcome:
         """:func:`~reports.run.units.run_unit` as one task, waited for (a threshold's
@@ -152,19 +182,23 @@ class DaskExecutor:
         streamed (``on_output`` must be None)."""
         if on_output is not None:
             raise ValueError("a cluster's evaluation streams no output steps")
-        future = self.client.submit(run_unit, fn, case, solver, index, False, None, limit_s,
-                                    pure=False, **self._placement(case, solver))
-        return future.result()
+        future = self._submit(case, solver, fn, case, solver, index, False, None, limit_s)
+        return self._read(future, index, solver, case)
 
     def map(self, fn: Any, items: list[Any]) -> list[Any]:
         """``[fn(x) for x in items]``, each call in a client thread of its own, so that
-        the tasks they submit run at once; the first exception is raised."""
+        the tasks they submit run at once; the first exception stops the others' tasks
+        (:meth:`stop`) and is raised."""
         from concurrent.futures import ThreadPoolExecutor
 
         if len(items) <= 1:
             return [fn(x) for x in items]
         with ThreadPoolExecutor(max_workers=len(items), thread_name_prefix="group") as pool:
-            return list(pool.map(fn, items))
+            try:
+                return list(pool.map(fn, items))
+            except BaseException:
+                self.stop()
+                raise
 
     def __call__(self, plan: CasePlan, units: list[tuple[int, str]],
                  progress: bool) -> Iterator[UnitOutcome]:
@@ -178,24 +212,20 @@ class DaskExecutor:
 
         fns = {s: solvers.resolve(s) for s in {s for _, s in units}}
         tag = uuid.uuid4().hex[:8]
-        futures = [self.client.submit(run_unit, fns[s], plan.points[i], s, i, False, None,
-                                      plan.limits.deadline(plan.points[i], s), pure=False,
-                                      key=f"{plan.dir_name}-{i}-{s}-{tag}",
-                                      **self._placement(plan.points[i], s))
-                   for i, s in units]
-        unit = {f.key: (i, s) for f, (i, s) in zip(futures, units, strict=True)}
+        unit = {}
+        for i, s in units:
+            case = plan.points[i]
+            future = self._submit(case, s, fns[s], case, s, i, False, None,
+                                  plan.limits.deadline(case, s),
+                                  key=f"{plan.dir_name}-{i}-{s}-{tag}")
+            unit[future.key] = (future, i, s)
         try:
-            for future in as_completed(futures):
-                try:
-                    outcome = future.result()
-                except Exception as exc:  # the cluster lost it (KilledWorker, ...)
-                    i, s = unit[future.key]
-                    outcome = UnitOutcome(i, s, plan.points[i].param, None, 0.0,
-                                          kind="internal", error="the cluster lost the run: "
-                                          f"{type(exc).__name__}: {exc}")
-                yield outcome
+            for future in as_completed([f for f, _, _ in unit.values()]):
+                _, i, s = unit.pop(future.key)  # let the result go once read
+                yield self._read(future, i, s, plan.points[i])
         finally:
-            for future in futures:
+            for future, _, _ in unit.values():
+                self._live.discard(future)
                 future.cancel()
 
 
@@ -222,8 +252,16 @@ def execute_cases(plans: list[CasePlan], out: Path, executor: DaskExecutor,
         counted = _Counted(executor, bar)
         futures = [pool.submit(execute, p, out, executor=counted, progress=False,
                                extra_manifest=extra) for p in plans]
-        for future in as_completed(futures):
-            yield future.result()
+        try:
+            for future in as_completed(futures):
+                yield future.result()
+        except BaseException:  # an interrupt, or a case that raised: stop the others
+            executor.stop()
+            raise
+
+
+class _Stopped(RuntimeError):
+    """A unit not submitted: the run is being stopped (:meth:`DaskExecutor.stop`)."""
 
 
 class _Counted:

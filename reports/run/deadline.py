@@ -19,10 +19,13 @@ the main thread (``run``, ``sweep --workers 0``, ``threshold``) by one alarm sig
 handler raises :class:`Overrun` naming the reason; in another thread (a Dask worker's task,
 ``--workers``) by an asynchronous exception raised in that thread at its next Python
 instruction, turned into the same :class:`Overrun` (a long call into compiled code is
-stopped when it returns).  In the main thread the CPU time is the process's and its
-children's; in another it is the thread's own (a worker's other threads are not the run's).
-A run blocked inside a system call is stopped in the main thread (the signal interrupts
-the call) but not in another thread, where the stop waits for the call to return.
+stopped when it returns).  In the main thread both reasons read the process's CPU time
+and its children's.  In another thread the budget reads the thread's own CPU time (a
+worker's other tasks are not the run's, and never stop it), and the progress the
+process's (the run's helper threads compute for it: a thread waiting on them is not
+hung).  A run blocked inside a system call is stopped in the main thread (the signal
+interrupts the call) but not in another thread, where the stop waits for the call to
+return.
 """
 
 from __future__ import annotations
@@ -93,24 +96,31 @@ class _AsyncStop(Exception):
     """Raised in a non-main thread by its watchdog; the block turns it into Overrun."""
 
 
+def _process_clock() -> float:
+    """The process's CPU time and its children's, but the calling (watchdog) thread's."""
+    return cpu_seconds() - time.thread_time()
+
+
 class _Watch:
     """The watchdog's state: the budget, the progress window, and why it stopped;
-    ``clock`` the run's CPU time as the watchdog thread reads it."""
+    ``clock`` the CPU time the budget reads (as the watchdog thread reads it, from
+    ``start``), the progress window the process's (module doc)."""
 
     def __init__(self, limit_s: float, what: str, clock: Callable[[], float],
                  start: float) -> None:
         self.limit_s, self.what, self.clock, self.start = limit_s, what, clock, start
-        self.window = [(time.monotonic(), self.start)]
+        self.window = [(time.monotonic(), cpu_seconds())]  # the watchdog's own starts at 0
         self.reason: str | None = None
 
     def look(self) -> str | None:
         """The reason to stop now, if any (called from the watchdog thread)."""
-        now, cpu = time.monotonic(), self.clock()
-        if cpu - self.start > self.limit_s:
+        now = time.monotonic()
+        if self.clock() - self.start > self.limit_s:
             return (f"{self.what} ran past its deadline of {self.limit_s:.3g} s of CPU time "
                     f"(its cost estimate times the estimate's calibration factor and the "
                     f"cores, plus {ALLOWANCE_S:g} s); stopped (on a slower processor, "
                     "raise --time-factor)")
+        cpu = _process_clock()
         self.window.append((now, cpu))
         while len(self.window) > 1 and now - self.window[1][0] >= STALL_S:
             self.window.pop(0)
@@ -131,8 +141,7 @@ def deadline(limit_s: float, what: str) -> Iterator[None]:
         with _in_thread(limit_s, what):
             yield
         return
-    # the process's CPU time, but the watchdog thread's own (it starts at 0)
-    watch = _Watch(limit_s, what, lambda: cpu_seconds() - time.thread_time(), cpu_seconds())
+    watch = _Watch(limit_s, what, _process_clock, cpu_seconds())
     done = threading.Event()
     main = threading.main_thread().ident
 
@@ -152,24 +161,26 @@ def deadline(limit_s: float, what: str) -> Iterator[None]:
 
 @contextmanager
 def _in_thread(limit_s: float, what: str) -> Iterator[None]:
-    """The deadline in a thread other than the main one: the thread's own CPU time, and
-    an asynchronous exception to stop it."""
+    """The deadline in a thread other than the main one: a budget of the thread's own CPU
+    time, and an asynchronous exception of this block's own class to stop it (an
+    enclosing block's passes through to that block)."""
     ident = threading.get_ident()
     clock = _thread_clock(ident)
     watch = _Watch(limit_s, what, clock, clock())
     done = threading.Event()
     lock = threading.Lock()  # the stop is raised only while the block runs
+    mine = type("_AsyncStop", (_AsyncStop,), {})
 
     def stop() -> None:
         with lock:
             if not done.is_set():
                 ctypes.pythonapi.PyThreadState_SetAsyncExc(ctypes.c_ulong(ident),
-                                                           ctypes.py_object(_AsyncStop))
+                                                           ctypes.py_object(mine))
 
     try:
         with _watchdog(watch, done, stop, lock):
             yield
-    except _AsyncStop:
+    except mine:
         raise Overrun(watch.reason) from None
     finally:
         if watch.reason is not None:  # a stop not yet raised when the block ended

@@ -281,4 +281,3 @@ def run_case(case: str | Path, solvers: list[str] | None = None, *,
     plan = plan_case(case, chosen, quick=quick, overrides=overrides, skipped=skipped,
                      explicit=bool(solvers))
     return execute(plan, Path(out), progress=False)
-

@@ -61,7 +61,10 @@ def grid_dependence(rows: list[dict[str, Any]]) -> list[str]:
 
 
 def stderr_log(message: str) -> None:
-    print(f"threshold: {message}", file=sys.stderr, flush=True)
+    """One progress line, written whole (the bisections of a cluster log from several
+    threads)."""
+    sys.stderr.write(f"threshold: {message}\n")
+    sys.stderr.flush()
 
 
 @contextmanager
