@@ -30,10 +30,8 @@ from collections.abc import Callable
 from cases.model import Case, one_case
 from cases.result import Cost, RunResult, StepResult
 
-from .contact.augmented import ContactNotConverged
-from .errors import FemError, FemUnsupported
+from .errors import ContactNotConverged, FemError, FemUnsupported, MeshError
 from .fields.vtu import read_vtu, write_vtu
-from .model.mesh import MeshError
 from .solver import solve as _solve
 
 

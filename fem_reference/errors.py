@@ -1,4 +1,4 @@
-"""The FEM reference's errors."""
+"""The FEM reference's errors (below every room: any module may raise them)."""
 
 from __future__ import annotations
 
@@ -11,3 +11,11 @@ class FemError(RuntimeError):
 
 class FemUnsupported(FemError, CaseError):
     """The case needs a feature the FEM reference does not have (also a CaseError)."""
+
+
+class MeshError(RuntimeError):
+    """The block mesh could not be built."""
+
+
+class ContactNotConverged(RuntimeError):
+    """The contact iteration did not converge; the message gives the residual."""

@@ -37,7 +37,7 @@ import numpy as np
 from cases.result import CYCLE_COLUMNS, LOAD_LOST_FRACTION, LOOP_COLUMNS, STICK, RunEvent
 from cases.steps import fretting_outputs
 
-from .contact.augmented import Control, Solution
+from .contact.control import Control, Solution
 from .contact.laws import Evaluation
 from .loading import (
     add_wear,

@@ -27,7 +27,8 @@ from cases.model import Case
 from cases.result import OPEN, SLIP, STICK
 from cases.steps import sliding_outputs, sliding_steps
 
-from .contact.augmented import Control, Solution, augmented
+from .contact.augmented import augmented
+from .contact.control import Control, Solution
 from .contact.laws import Evaluation, evaluate
 from .contact.semismooth import semismooth
 from .errors import FemError

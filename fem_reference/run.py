@@ -16,8 +16,8 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from .contact.augmented import Solution
 from .contact.compliance import NodalCompliance
+from .contact.control import Solution
 from .contact.kept_factors import KeptFactors
 from .contact.laws import Evaluation, Points
 from .contact.stiffened import StiffenedSolver

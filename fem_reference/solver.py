@@ -61,7 +61,7 @@ def solve(case: Case, progress: bool = False, *, vtu: bool = True, log=None,
     as ``(step, meshio.Mesh)`` pairs.  ``log``: optional callable receiving progress
     messages (set-up timings).  Raises :class:`~fem_reference.model.fem_model.FemError` for a case
     the model cannot represent and
-    :class:`~fem_reference.contact.augmented.ContactNotConverged` (with the residual) when the
+    :class:`~fem_reference.errors.ContactNotConverged` (with the residual) when the
     contact iteration fails.
     """
     t0 = time.perf_counter()

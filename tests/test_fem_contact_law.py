@@ -289,8 +289,8 @@ def _block_and_whole(mu1, mu2, beta, approach, amplitude, angle) -> np.ndarray:
     by block and as whole systems, asserted equal; returns the states (steps, n)."""
     import dataclasses
 
-    from fem_reference.contact.augmented import Control
     from fem_reference.contact.compliance import NodalCompliance
+    from fem_reference.contact.control import Control
     from fem_reference.contact.kept_factors import KeptFactors
     from fem_reference.contact.semismooth import semismooth
 
@@ -366,8 +366,8 @@ def test_the_newton_step_is_the_derivative_of_the_functions(mu1, mu2, beta, angl
     :mod:`fem_reference.fretting`), so that stick, slip and wear terms all enter;
     identical (decoupled, block-triangular solve) and different materials."""
     from fem_reference.contact.alart_curnier import State, laws, problem
-    from fem_reference.contact.augmented import Control
     from fem_reference.contact.compliance import NodalCompliance
+    from fem_reference.contact.control import Control
     from fem_reference.contact.kept_factors import KeptFactors
     from fem_reference.contact.newton_system import newton_step
     from fem_reference.contact.semismooth import _update, semismooth

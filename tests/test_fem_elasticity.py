@@ -9,9 +9,10 @@ import pytest
 from skfem import Basis, CellBasis, ElementTetP2, ElementVector, MeshTet, asm
 from skfem.models.elasticity import lame_parameters, linear_elasticity
 
+from fem_reference.errors import MeshError
 from fem_reference.fields.stresses import PointLocator, sample_displacement, sample_stresses
 from fem_reference.model.elasticity import Factorization, P2Space, stiffness, stress_from_gradient
-from fem_reference.model.mesh import MeshError, MeshSpec, block_mesh, build_points
+from fem_reference.model.mesh import MeshSpec, block_mesh, build_points
 from fem_reference.model.surface import ContactSurface
 
 pytestmark = pytest.mark.fem

@@ -9,8 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .augmented import Control, unknowns
 from .compliance import NodalCompliance
+from .control import Control, unknowns
 from .laws import Law, Points, norm_with
 
 
@@ -19,7 +19,7 @@ class Problem:
     """One contact solve: the nodal compliance ``op``, the ``law``, the points ``pts``
     (their tractions are the start and, on return, the solution), the control ``ctrl``,
     the wear compliance ``cw`` of each node (Eq. 23), the control unknowns ``extra``
-    (:func:`fem_reference.contact.augmented.unknowns`), the components the surface cannot
+    (:func:`fem_reference.contact.control.unknowns`), the components the surface cannot
     move (``dead``), the augmentation parameters ``r`` and ``r_t`` (they set the
     iteration's path, not its solution) and the tolerance."""
 

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ContactNotConverged
 from .alart_curnier import Laws, Problem, State, merit
-from .augmented import ContactNotConverged
 from .block_system import block_step
 from .kept_factors import KeptFactors
 from .newton_rows import control_rows, dead_rows, slip_rows, slip_terms, stick_rows

@@ -21,7 +21,7 @@ penalty: ``r`` and ``r_t`` set only the path of the iteration.
 The elastic response is the nodal compliance ``d = H W λ`` with ``H = G C Gᵀ`` (the
 condensed compliance seen from the nodes, :class:`NodalCompliance`), so the unknowns are
 the tractions of the active nodes and the control unknowns (δ, g_t,o) of
-:func:`fem_reference.contact.augmented.unknowns`.  Each iteration solves one dense system on the
+:func:`fem_reference.contact.control.unknowns`.  Each iteration solves one dense system on the
 active set (open nodes: ``λ = 0`` exactly), started from the previous state's tractions
 and so from its active sets.  The functions and their merit are in
 :mod:`fem_reference.contact.alart_curnier`, the Newton system in
@@ -34,9 +34,10 @@ import numpy as np
 
 from cases.result import OPEN, SLIP, STICK
 
+from ..errors import ContactNotConverged
 from .alart_curnier import Laws, Problem, State, laws, merit, problem
-from .augmented import ContactNotConverged, Control, Solution
 from .compliance import NodalCompliance
+from .control import Control, Solution
 from .kept_factors import KeptFactors
 from .laws import Evaluation, Law, Points
 from .newton_system import newton_step
@@ -57,7 +58,7 @@ def semismooth(op: NodalCompliance, law: Law, pts: Points, ctrl: Control, *,
     of the last step unchanged; at most ``max_iter`` (default :data:`MAX_ITER`)
     iterations.  ``iterations``: Newton iterations.  ``kept``: the factors of the
     Newton systems (:class:`KeptFactors`), kept by the caller for the next solves.
-    Raises :class:`~fem_reference.contact.augmented.ContactNotConverged` with the residual.
+    Raises :class:`~fem_reference.errors.ContactNotConverged` with the residual.
     """
     with blas_threads(1):
         return _run(problem(op, law, pts, ctrl, cw, tol), kept or KeptFactors(),

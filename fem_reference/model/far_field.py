@@ -6,7 +6,7 @@ against its fixed bottom at depth H.  Under a load P the block's surface near th
 contact moves less than the half-space's by a nearly rigid offset c₁ P / E (the
 displacement the half-space has beyond the block, felt through it), so a held
 half-space approach δ is the FE approach δ_FE = δ − c P with c = c₁(ν_a)/E_a +
-c₁(ν_b)/E_b (:class:`fem_reference.contact.augmented.Control`, ``compliance``).
+c₁(ν_b)/E_b (:class:`fem_reference.contact.control.Control`, ``compliance``).
 
 The same holds tangentially, with the opposite sign: the block, free at its sides,
 also rocks about its bottom and is the more compliant (c₁ₜ < 0).  An imposed

@@ -34,13 +34,11 @@ from skfem import MeshTet
 
 from cases.result import atomic_path
 
+from ..errors import MeshError
+
 SHAPES = ("quarter", "half", "full")
 _MESH_VERSION = 2  # bump when the meshing recipe changes
 SURFACE_GRADING = 0.1  # size growth per unit depth below the contact surface (h_surface)
-
-
-class MeshError(RuntimeError):
-    """The block mesh could not be built."""
 
 
 @dataclass(frozen=True)
