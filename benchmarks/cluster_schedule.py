@@ -23,16 +23,16 @@ from reports.run.plan import plan_case, select_solvers
 
 
 def tasks(quick: bool) -> list[tuple[str, str, float, bool]]:
-    """(case, label, estimated seconds, is a probe run) of every unit of the chain."""
+    """(case, label, estimated seconds, is a study's run) of every unit of the chain."""
     chosen, skipped = select_solvers([], relations=quick)
     out = []
     for name in BUNDLED:
         plan = plan_case(name, chosen, quick=quick, skipped=skipped, explicit=False)
         runs = [(plan.points[i], s, False) for i, s in plan.units()]
-        runs += [(g.case, g.solver, True) for g in plan.probes]
+        runs += [(g.case, g.solver, True) for g in plan.study_runs()]
         for case, s, probe in runs:
             cost = solvers.estimate(s, case)
-            label = f"{name} [{case.param}] {s}" + (" (probe)" if probe else "")
+            label = f"{name} [{case.param}] {s}" + (" (study)" if probe else "")
             out.append((name, label, 0.0 if cost is None else cost.seconds, probe))
     return out
 

@@ -150,7 +150,7 @@ def test_fretting_runs_through_the_fem_by_default_with_its_probe():
     (issue 51), and plans one resolution probe per worn point: the half-space solver with
     its wear spread over half the FEM's surface element (reports.studies.probe)."""
     from reports.run.plan import plan_case
-    from reports.studies.probe import SPREAD
+    from reports.studies.probe import PROBE, SPREAD
 
     every = ["ic", "fem", "analytic"]
     for name in ("fretting_isotropic", "fretting_orthotropic", "hertz"):
@@ -158,15 +158,17 @@ def test_fretting_runs_through_the_fem_by_default_with_its_probe():
         assert "fem" in {s for _, s in plan.units()}, name
         assert "fem" not in plan.skipped, name
     plan = plan_case("fretting_orthotropic", every, quick=True, explicit=False)
-    assert [g.point for g in plan.probes] == list(range(len(plan.points)))
-    for g in plan.probes:
+    runs = plan.planned(PROBE).runs
+    assert [g.point for g in runs] == list(range(len(plan.points)))
+    assert plan.study_runs() == list(runs)  # the probe is the only study of a plain run
+    for g in runs:
         case = plan.points[g.point]
         element = case.fem.h_contact * case.hertz_scales[0]
         assert g.solver == "ic" and g.width == pytest.approx(element, rel=1e-12)
         assert g.case.solver.wear_spread == pytest.approx(SPREAD * element, rel=1e-12)
         assert g.case.with_changes(solver=case.solver) == case  # nothing else changes
-    assert plan_case("hertz", every, quick=True).probes == []  # no wear, no step
-    assert plan_case("fretting_orthotropic", ["ic", "analytic"], quick=True).probes == []
+    assert plan_case("hertz", every, quick=True).studies == ()  # no wear, no step
+    assert plan_case("fretting_orthotropic", ["ic", "analytic"], quick=True).studies == ()
 
 
 def test_regime_events_are_recorded_once_with_their_cycle():

@@ -143,7 +143,8 @@ def test_generated_worn_partial_slip_cases_keep_the_probes_promise(mu1, ratio, b
     (case,), sweep = sweep_points(name, friction, quick=True, overrides=overrides)
     plan = plan_case(name, ["ic", "fem"], quick=True, overrides=overrides, points=[case],
                      sweep=sweep, dir_name="generated")
-    assert len(plan.probes) == 1
+    assert [p.study.name for p in plan.studies] == ["probe"]
+    assert len(plan.study_runs()) == 1
     run = execute(plan, tmp_path_factory.mktemp("probe"), progress=False)
     assert not run.failures, run.failures
     m = run.metrics[run.metrics["pair"] == "ic-fem"]

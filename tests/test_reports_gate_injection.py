@@ -55,7 +55,7 @@ from cases.loader import load_case
 from cases.model import Case
 from cases.result import RunResult, StepResult
 from reports.compare.point import point_rows
-from reports.compare.verdict import decide
+from reports.compare.verdict import Uncertainty, decide
 from reports.registry import solvers
 from reports.registry.tolerances import (
     EXCESS,
@@ -68,7 +68,9 @@ from reports.registry.tolerances import (
     tolerance_key,
 )
 from reports.store.study_tables import CONVERGED
-from reports.studies import gridstudy, jumpstudy, uncertainty
+from reports.studies import gridstudy, uncertainty
+from reports.studies.jumpstudy import JUMP_STUDY
+from reports.studies.study import Own, StudyTable
 
 #: every row kind the registry can write
 ROW_KINDS = sorted((q, m) for q, ms in QUANTITY_METRICS.items() for m in ms)
@@ -385,12 +387,13 @@ def _rows(case: Case, pair: str, tested: RunResult, good: RunResult,
     if study is None:
         metrics = decide(rows)
     elif rule == "grid":
-        metrics = decide(rows, grid=gridstudy.flags(rows, study))
+        metrics = decide(rows, [gridstudy.flags(rows, study)])
     elif rule == "jump":
-        metrics = decide(rows, jump=jumpstudy.flags_jump(rows, study))
+        metrics = decide(rows, JUMP_STUDY.evidence(rows, StudyTable(study), Own([case], [],
+                                                                               lambda c: [])))
     else:
-        metrics = decide(rows, uncertainty=uncertainty.values(rows, study,
-                                                              {case.param: case}))
+        metrics = decide(rows, [Uncertainty(uncertainty.values(rows, study,
+                                                               {case.param: case}))])
     metrics = metrics[metrics["pair"] == pair]
     return {(q, m): (float(v), float(t), s, bool(p), str(n)) for q, m, v, t, s, p, n in zip(
         metrics["quantity"], metrics["metric"], metrics["value"], metrics["tolerance"],

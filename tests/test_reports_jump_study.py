@@ -6,6 +6,7 @@ from __future__ import annotations
 import io
 import json
 import math
+from dataclasses import replace
 
 import pandas as pd
 import pytest
@@ -16,10 +17,16 @@ from reports.cli import main
 from reports.compare.verdict import decide
 from reports.render.gate import run_gate
 from reports.render.pages import report_text
-from reports.run import study_runs
 from reports.store import study_tables
 from reports.store.readers import Malformed
 from reports.studies import jumpstudy
+from reports.studies.jumpstudy import JUMP_STUDY
+from reports.studies.study import Levels, Own, StudyTable
+
+
+def late(metrics: pd.DataFrame, table: pd.DataFrame) -> list:
+    """The jump study's evidence on ``metrics`` from ``table``."""
+    return JUMP_STUDY.evidence(metrics, StudyTable(table), Own([], [], lambda c: []))
 
 BETA0 = ("--set", "friction.beta=0")  # quick fretting_orthotropic, gross slip, J = 500
 
@@ -114,11 +121,11 @@ def test_not_converged_in_j_is_flagged_not_gated(studied):
                              "pair": "ic-fem", "quantity": "w_max", "metric": "rel",
                              "value": 0.01, "tolerance": 0.1, "status": "gated",
                              "note": ""}])
-    flagged = decide(metrics, jump=jumpstudy.flags_jump(metrics, row))
+    flagged = decide(metrics, late(metrics, row))
     assert flagged["status"].iat[0] == "not converged"
     assert flagged["note"].iat[0].startswith("jump study: ic not converged, f = ")
     assert "on J = 125, 250, 500 cycles" in flagged["note"].iat[0]
-    assert decide(metrics, jump=jumpstudy.flags_jump(metrics, js))["status"].iat[0] == "gated"
+    assert decide(metrics, late(metrics, js))["status"].iat[0] == "gated"
 
 
 @pytest.mark.parametrize(("case", "needle"), [
@@ -137,16 +144,17 @@ def test_a_failed_level_leaves_the_quantity_not_converged():
     """A run at J/2 or J/4 that fails (contact at the grid edge, no convergence) is no
     evidence: the rows say which level failed and why, and are not converged."""
     from reports.run.plan import plan_case
-    from reports.run.study_runs import Study
 
-    plan = study_runs.add_jumps(plan_case("fretting_orthotropic", ["ic"], quick=True,
-                                         overrides={"friction.beta": 0.0}))
-    assert [(g.level, g.case.fretting.jump) for g in plan.jumps] == [(2, 250.0), (3, 125.0)]
+    plan = plan_case("fretting_orthotropic", ["ic"], quick=True,
+                     overrides={"friction.beta": 0.0}).with_study(JUMP_STUDY)
+    runs = list(plan.planned(JUMP_STUDY).runs)
+    assert [(g.level, g.case.fretting.jump) for g in runs] == [(2, 250.0), (3, 125.0)]
     own = [{"step": 2, "cycle": 1000.0, "w_max": 1e-3}, {"step": 4, "cycle": 2000.0,
                                                           "w_max": 2e-3}]
     half = [{**r, "w_max": 1.1 * r["w_max"]} for r in own]
-    study = Study(rows={(0, "ic", 2): half}, errors={(0, "ic", 3): "failed: edge"})
-    table = study_runs.jump_table(plan, {(0, "ic"): own}, study).set_index("cycle")
+    levels = Levels(rows={(0, "ic", 2): half}, errors={(0, "ic", 3): "failed: edge"})
+    mine = replace(plan.own(), rows={(0, "ic"): own})
+    table = JUMP_STUDY.table(mine, runs, levels).table.set_index("cycle")
     assert list(table["quantity"]) == ["w_max", "w_max"]
     assert table.loc[2000.0, "change_halved"] == pytest.approx(0.1, rel=1e-12)
     assert (table["status"] == "not converged").all()

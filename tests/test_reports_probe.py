@@ -36,7 +36,7 @@ def test_a_row_is_gated_only_where_the_probe_moves_it_by_at_most_half_its_tolera
     table = _table(("ic-fem", "w_max", "rel", 0.04),        # exactly half: admitted
                    ("ic-fem", "energy", "rel", 0.0301),     # beyond half: shown
                    ("ic-fem", "P", "rel", float("nan")))    # not formed: shown
-    out = decide(rows, probe=probe.flags(rows, table))
+    out = decide(rows, [probe.flags(rows, table)])
     assert list(out["status"]) == [tol.GATED, tol.NOT_CONVERGED, tol.NOT_CONVERGED,
                                    tol.GATED]
     note = out["note"].iat[1]

@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from reports.compare.verdict import EXTRA_COLUMNS, METRICS_COLUMNS, decide
+from reports.compare.verdict import EXTRA_COLUMNS, METRICS_COLUMNS, Uncertainty, decide
 from reports.registry import solvers
 from reports.registry import tolerances as tol
 from reports.studies import convergence, uncertainty
@@ -47,7 +47,8 @@ def metrics(*rows: dict) -> pd.DataFrame:
 
 def apply(m: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
     """The verdict on ``m`` with the combined uncertainty of the grid studies ``frame``."""
-    return decide(m, uncertainty=uncertainty.values(m, frame))
+    u = uncertainty.values(m, frame)
+    return decide(m, [] if u is None else [Uncertainty(u)])
 
 
 def order_two(f0: float, c: float) -> tuple[float, float, float]:
@@ -154,7 +155,7 @@ def test_an_asymptotic_closed_form_states_its_deficit():
     frame = pd.DataFrame([study_row("ic", "w_max", (1.6405e-3, 1.6402e-3, 1.6423e-3))])
     rows = metrics(metric_row("ic-analytic", "w_max", 0.013, 0.035),
                    metric_row("ic-analytic", "w_max", 0.040, 0.035))
-    stated = decide(rows, uncertainty=uncertainty.values(rows, frame, {"": case}))
+    stated = decide(rows, [Uncertainty(uncertainty.values(rows, frame, {"": case}))])
     assert list(stated["passed"]) == [True, False]
     assert (stated["uncertainty"] >= solvers.ARGATOV_W_MAX).all()
     bare = apply(rows, frame)  # without the case: the closed form's sampling budget only

@@ -237,7 +237,7 @@ def test_the_probe_admits_the_global_loads_and_the_early_wear_in_partial_slip(qu
     assert gated["tolerance_key"].str.startswith("default").all()
     at_1000 = set(gated[gated["cycle"] == 1000.0]["quantity"])
     assert {"P", "q_ends", "w_max", "wear_volume"} <= at_1000
-    probed = found.probe
+    probed = found.study("probe")
     assert set(probed["param"]) == {"beta=0", "beta=90", "beta=60"}
     shown = m[m["note"].str.contains("resolution probe: ", na=False)]
     assert len(shown) > 0 and (shown["status"] == "not converged").all()

@@ -79,12 +79,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     plans = [plan_case(n, chosen, quick=args.quick, overrides=overrides, skipped=skipped,
                        limits=limits, explicit=bool(requested))
              for n in names]  # validate every case before running
-    if args.convergence:
-        from reports.run.study_runs import add_grid_studies
-
-        plans = add_grid_studies(plans, limits)
-    if args.jump_study:
-        plans = _add_jumps(plans, limits)
+    plans = _requested(args, plans)
     seen: dict[str, str] = {}
     for n, p in zip(names, plans, strict=True):
         if p.dir_name in seen:
@@ -143,8 +138,8 @@ def _announce(plans) -> float:
     the total estimated seconds (units without an estimate count 0)."""
     total = 0.0
     for p in plans:
-        probes = [(g.case, g.solver) for g in p.probes]  # the resolution probe's runs
-        for case, s in [(p.points[i], s) for i, s in p.units()] + probes:
+        extra = [(g.case, g.solver) for g in p.study_runs()]  # the studies' runs
+        for case, s in [(p.points[i], s) for i, s in p.units()] + extra:
             cost = solvers.estimate(s, case)
             if cost is None:
                 continue
@@ -153,9 +148,9 @@ def _announce(plans) -> float:
                 where = p.name + (f" [{case.param}]" if case.param else "")
                 print(f"estimate: {where} {s}: {_duration(cost.seconds)}, "
                       f"{cost.memory / 2**30:.1f} GiB")
-    probes = sum(len(p.probes) for p in plans)
+    extra = sum(len(p.study_runs()) for p in plans)
     print(f"run: {sum(len(p.units()) for p in plans)} solver run(s)"
-          + (f" and {probes} resolution probe(s)" if probes else "")
+          + (f" and {extra} run(s) of studies" if extra else "")
           + f" in {len(plans)} case(s), estimated {_duration(total)}")
     return total
 
@@ -210,11 +205,15 @@ def _check_serial(plan, path: Path, wall: float) -> int:
     return 0 if check["identical"] else 1
 
 
-def _add_jumps(plans: list[Any], limits: Any) -> list[Any]:
-    """The plans with their cycle-jump studies (:func:`reports.run.study_runs.add_jump_studies`)."""
-    from reports.run.study_runs import add_jump_studies
+def _requested(args: argparse.Namespace, plans: list[Any]) -> list[Any]:
+    """The plans with the studies their flags ask for (``Study.option``,
+    :func:`reports.run.plan.request_study`), their notes said."""
+    from reports.run.plan import request_study
+    from reports.studies.registry import STUDIES
 
-    plans, notes = add_jump_studies(plans, limits)
-    for note in notes:
-        print(f"{PROG}: note: --jump-study: {note}", file=sys.stderr)
+    for study in STUDIES:
+        if study.option and getattr(args, study.option.lstrip("-").replace("-", "_"), False):
+            plans, notes = request_study(plans, study.name)
+            for note in notes:
+                print(f"{PROG}: note: {study.option}: {note}", file=sys.stderr)
     return plans

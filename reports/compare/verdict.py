@@ -3,8 +3,9 @@
 The comparisons (:mod:`reports.compare.metrics`) give every row its value, its status
 from what they see themselves (a quantity the case declares not converged, a ``kink``
 row, a σ_VM maximum whose location is not determined) and the tolerance of its key
-(:func:`reports.registry.tolerances.tolerance`).  The studies of a run add evidence, in
-this order:
+(:func:`reports.registry.tolerances.tolerance`).  The studies of a run
+(:mod:`reports.studies.study`) add evidence (:data:`Evidence`), folded in this
+order, each group in the order of the studies' list:
 
 1. the grid study (``run --convergence``): rows of a quantity that the grids do not
    settle beyond the solver's budget become "not converged" (:class:`Flags`,
@@ -14,7 +15,8 @@ this order:
    tolerance likewise;
 2. the combined numerical uncertainty U of the pair (Eq. U1): the tolerance of a row
    still gated becomes min(U, tolerance) (:func:`reports.studies.uncertainty.values`);
-3. the cycle-jump study (``run --jump-study``): as 1, with the jump's levels.
+3. the cycle-jump study (``run --jump-study``): as 1, with the jump's levels
+   (:class:`Flags` with ``late``: its levels are not part of U).
 
 Then, and only here, ``passed`` follows from value and tolerance by the one pass rule
 :func:`reports.registry.tolerances.passes`.
@@ -43,13 +45,24 @@ class Flags:
 
     dropped: Mapping[int, Sequence[str]] = field(default_factory=dict)
     kept: Mapping[int, Sequence[str]] = field(default_factory=dict)
+    late: bool = False  # applied after the uncertainty (step 3 of the module doc)
 
 
-def _flag(out: pd.DataFrame, flags: Flags | None) -> None:
+@dataclass(frozen=True)
+class Uncertainty:
+    """The combined numerical uncertainty U of every row (by position; NaN: none), which
+    tightens the tolerance of a row still gated to min(U, tolerance)."""
+
+    values: np.ndarray
+
+
+#: what a study tells the verdict about the metric rows
+Evidence = Flags | Uncertainty
+
+
+def _flag(out: pd.DataFrame, flags: Flags) -> None:
     """Apply a study's :class:`Flags` in place: a dropped row is not gated, and every
     flagged row's note names the study's findings after any earlier reason."""
-    if flags is None:
-        return
     status, note = out.columns.get_loc("status"), out.columns.get_loc("note")
     for k in sorted(set(flags.dropped) | set(flags.kept)):
         dropped, kept = list(flags.dropped.get(k, ())), list(flags.kept.get(k, ()))
@@ -62,22 +75,32 @@ def _flag(out: pd.DataFrame, flags: Flags | None) -> None:
                                      + [t + " (gated)" for t in kept])
 
 
-def decide(rows: pd.DataFrame, *, grid: Flags | None = None,
-           uncertainty: np.ndarray | None = None, jump: Flags | None = None,
-           probe: Flags | None = None) -> pd.DataFrame:
-    """metrics.csv from the comparisons' ``rows`` and a run's study evidence (module doc):
-    status, tolerance, ``tolerance_kind``, ``budget``, ``uncertainty`` and ``passed``."""
+def _tighten(out: pd.DataFrame, found: Uncertainty) -> None:
+    """Apply U in place: the tolerance of a row still gated becomes min(U, budget)."""
+    if out.empty:
+        return
+    u = np.where(out["status"].to_numpy() == tol.GATED, np.asarray(found.values, float),
+                 np.nan)
+    tighter = np.isfinite(u) & (u < out["budget"].to_numpy(float))
+    out["uncertainty"] = u
+    out.loc[tighter, "tolerance"] = u[tighter]
+    out.loc[tighter, "tolerance_kind"] = tol.UNCERTAINTY
+
+
+def decide(rows: pd.DataFrame, evidence: Sequence[Evidence | None] = ()) -> pd.DataFrame:
+    """metrics.csv from the comparisons' ``rows`` and a run's study ``evidence`` (module
+    doc; None: none): status, tolerance, ``tolerance_kind``, ``budget``, ``uncertainty``
+    and ``passed``."""
     out = tol.with_tolerance_columns(rows).reset_index(drop=True)
-    _flag(out, grid)
-    _flag(out, probe)
-    if uncertainty is not None and not out.empty:
-        u = np.where(out["status"].to_numpy() == tol.GATED,
-                     np.asarray(uncertainty, float), np.nan)
-        tighter = np.isfinite(u) & (u < out["budget"].to_numpy(float))
-        out["uncertainty"] = u
-        out.loc[tighter, "tolerance"] = u[tighter]
-        out.loc[tighter, "tolerance_kind"] = tol.UNCERTAINTY
-    _flag(out, jump)
+    for f in evidence:
+        if isinstance(f, Flags) and not f.late:
+            _flag(out, f)
+    for f in evidence:
+        if isinstance(f, Uncertainty):
+            _tighten(out, f)
+    for f in evidence:
+        if isinstance(f, Flags) and f.late:
+            _flag(out, f)
     out["passed"] = tol.passes(out["value"], out["tolerance"]).astype(bool)
     extra = [c for c in out.columns if c not in METRICS_COLUMNS]
     return out[METRICS_COLUMNS + extra]

@@ -34,8 +34,7 @@ from reports.store.layout import METRICS, THRESHOLDS
 from reports.store.readers import gated, ungated
 from reports.store.results import CaseResults, Scan, not_converged, scan
 from reports.studies import probe
-from reports.studies.gridstudy import note_lines
-from reports.studies.jumpstudy import note_lines_jump
+from reports.studies.registry import STUDIES
 
 _SHOW = ["case", "param", "step", "pair", "oracle", "quantity", "metric", "value", "tolerance",
          "passed", "status", "tolerance_key", "tolerance_kind", "budget", "uncertainty"]
@@ -208,8 +207,8 @@ def case_line(case: CaseResults) -> str:
 def _verbose_notes(case: CaseResults) -> list[str]:
     return ([f"note: {case.name}: solver {s} not run ({why})"
              for s, why in case.manifest.get("skipped", {}).items()]
-            + note_lines(case.name, case.convergence)
-            + note_lines_jump(case.name, case.jump_study) + ungated_lines(case))
+            + [line for s in STUDIES for line in s.notes(case.name, case.study(s.name))]
+            + ungated_lines(case))
 
 
 def _warnings(case: CaseResults) -> list[str]:

@@ -16,6 +16,7 @@ from reports.render.study_frames import convergence_frame, jump_frame, probe_fra
 from reports.store import layout
 from reports.store.results import CaseResults
 from reports.studies import gridstudy, probe
+from reports.studies.probe import PROBE
 
 
 def _study_row_class(row: pd.Series) -> str:
@@ -101,7 +102,8 @@ def probe_section(case: CaseResults) -> list[str]:
     study = probe_frame(case)
     if study.empty:
         return []
-    width, spread = case.probe["width"].max(), case.probe["spread"].max()
+    table = case.study(PROBE.name)
+    width, spread = table["width"].max(), table["spread"].max()
     out = study[study["status"] != "gated"]
     parts = [f'<h3 id="probe-{escape(case.name)}">Resolution probe</h3><div class="convergence">',
              "<p>The half-space solver again with every committed wear increment spread "

@@ -38,6 +38,8 @@ from reports.store import layout
 from reports.store.readers import gated
 from reports.store.results import CaseResults, Scan, not_converged, scan
 from reports.studies import gridstudy
+from reports.studies.gridstudy import GRID_STUDY
+from reports.studies.jumpstudy import JUMP_STUDY
 
 PAGES = "_report"  # the case pages' directory under DIR
 _STAGING = "._report.partial"
@@ -73,8 +75,9 @@ def case_row(case: CaseResults) -> CaseRow:
     n_on = int(on.sum())
     n_ok = int((on & m["passed"].astype(bool)).sum()) if n_on else 0
     unsettled = [f"{len(gridstudy.unsettled(t))} {what}"
-                 for t, what in ((case.convergence, "not grid-converged"),
-                                 (case.jump_study, "not converged in the cycle jump"))
+                 for t, what in ((case.study(GRID_STUDY.name), "not grid-converged"),
+                                 (case.study(JUMP_STUDY.name),
+                                  "not converged in the cycle jump"))
                  if len(gridstudy.unsettled(t))]
     return CaseRow(case.name, f"{PAGES}/{case.name}.html", n_on - n_ok, n_ok, n_on,
                    len(m) - n_on, len(not_converged(case.summary)), ", ".join(unsettled),

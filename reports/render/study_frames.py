@@ -12,6 +12,8 @@ import pandas as pd
 from reports.registry import solvers
 from reports.store.results import CaseResults
 from reports.studies import convergence, gridstudy, probe
+from reports.studies.gridstudy import GRID_STUDY
+from reports.studies.jumpstudy import JUMP_STUDY
 
 
 def scales(case: CaseResults) -> dict[str, tuple[float, float]]:
@@ -59,7 +61,7 @@ def convergence_frame(case: CaseResults) -> pd.DataFrame:
 def study_frame(case: CaseResults) -> pd.DataFrame:
     """The run's grid studies (``convergence.csv``) for the page: cell sizes in units of
     a0, the three values (finest first) in the quantity's unit, order, GCI, status."""
-    conv = case.convergence
+    conv = case.study(GRID_STUDY.name)
     if conv.empty:
         return pd.DataFrame()
     a0 = conv["param"].map(lambda p: scales(case).get(p, (math.nan,) * 2)[0])
@@ -77,7 +79,7 @@ def jump_frame(case: CaseResults) -> pd.DataFrame:
     """The run's cycle-jump studies (``jump_study.csv``) for the page: the jumps J/4, J/2,
     J, the three values (finest first), the change when the run's J is halved [%], order,
     extrapolated value, status."""
-    js = case.jump_study
+    js = case.study(JUMP_STUDY.name)
     if js.empty:
         return pd.DataFrame()
     return pd.DataFrame({
@@ -94,7 +96,7 @@ def probe_frame(case: CaseResults) -> pd.DataFrame:
     """The resolution probe (``probe.csv``, :mod:`reports.studies.probe`) for the page: per
     probed row, the quantity's change under the spread wear step, the row's tolerance and
     whether the probe admits it to the gate."""
-    table = case.probe
+    table = case.study(probe.PROBE.name)
     if table.empty:
         return pd.DataFrame()
     table = probe.admitted(case.metrics, table)

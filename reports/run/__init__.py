@@ -7,7 +7,6 @@ __all__ = [
     "cluster",
     "plan",
     "runner",
-    "study_runs",
     "sweep",
     "threshold",
     "threshold_table",

@@ -17,8 +17,7 @@ from cases.loader import load_case
 from reports.registry import solvers
 from reports.registry.errors import UserError
 from reports.run import threshold as th
-from reports.run.plan import CasePlan, Limits, plan_case
-from reports.run.study_runs import add_grid_studies
+from reports.run.plan import CasePlan, Limits, plan_case, request_study
 from reports.run.sweep import plan_sweep
 from reports.run.threshold_table import existing
 from reports.store import layout
@@ -175,7 +174,7 @@ def plan(out: Path, quick: bool, chosen: list[str], limits: Limits,
         for i, s in p.units():
             _cost(work, s, p.points[i], 1.0 + (0.65 if solvers.record(s).refine else 0.0))
     if work.plans:
-        work.plans = add_grid_studies(work.plans, limits)
+        work.plans = request_study(work.plans, "convergence")[0]
     table = existing(out)
     for spec in THRESHOLDS:
         if spec.claim not in claims:

@@ -244,7 +244,7 @@ def execute_cases(plans: list[CasePlan], out: Path, executor: DaskExecutor,
     from reports.run.runner import execute
 
     extra = {"executor": executor.info}
-    total = sum(len(p.units()) + len(p.probes) for p in plans)
+    total = sum(len(p.units()) + len(p.study_runs()) for p in plans)
     with tqdm(total=total, desc="units", unit="run", leave=False,
               disable=None if progress is None else not progress) as bar, \
             ThreadPoolExecutor(max_workers=max(len(plans), 1),

@@ -11,13 +11,14 @@ from typing import Any
 
 from cases.loader import case_path, load_case
 from cases.model import Case, CaseError
-from reports.registry import resolution, solvers
+from reports.registry import solvers
 from reports.registry.errors import SolverUnavailable, UserError
 from reports.registry.pairs import pairs
 from reports.registry.tolerances import check_keys
 from reports.run import deadline
 from reports.store import layout
-from reports.studies import probe
+from reports.studies import registry as studies
+from reports.studies.study import Own, Planned, Study, StudyRun
 
 
 def check_fits(case: Case) -> None:
@@ -134,12 +135,8 @@ class CasePlan:
     sweep: dict[str, Any] | None = None
     dir_name: str = ""
     staging: Path | None = None  # where output steps are streamed (the runner's copy)
-    convergence: bool = False  # run --convergence: grid studies (reports.studies.gridstudy)
-    grids: list[Any] = field(default_factory=list)  # their coarse runs (GridRun)
-    jump_study: bool = False  # run --jump-study: cycle-jump studies (reports.studies.jumpstudy)
-    jumps: list[Any] = field(default_factory=list)  # their runs at J/2, J/4 (GridRun)
-    #: the resolution probe's runs of worn points (reports.studies.probe.ProbeRun)
-    probes: list[Any] = field(default_factory=list)
+    #: the run's studies with their runs (reports.studies.study), in the registry's order
+    studies: tuple[Planned, ...] = ()
     warnings: list[str] = field(default_factory=list)  # said before any work (grid_warning)
     limits: Limits = field(default_factory=Limits)  # memory, time, deadlines
 
@@ -150,6 +147,30 @@ class CasePlan:
 
     def applicable(self, case: Case) -> list[str]:
         return [s for s in self.solvers if solvers.unsupported(s, case) is None]
+
+    def own(self) -> Own:
+        """The run's own units as its studies see them (before any work)."""
+        return Own(self.points, self.units(), self.applicable)
+
+    def study_runs(self) -> list[StudyRun]:
+        """The runs of every study of the plan, in order."""
+        return [r for planned in self.studies for r in planned.runs]
+
+    def check(self, case: Case, solver: str) -> None:
+        """A study's unit checked like the case's own (``CaseError``)."""
+        check_fits(case)
+        self.limits.check(case, solver)
+
+    def planned(self, study: Study) -> Planned:
+        """The plan's ``study`` with its runs (none, if the plan does not hold it)."""
+        return next((p for p in self.studies if p.study is study), Planned(study))
+
+    def with_study(self, study: Study) -> CasePlan:
+        """The plan with ``study`` and its runs (:meth:`Study.plan`), in the registry's
+        order (``CaseError`` from the study's checks)."""
+        held = [p for p in self.studies if p.study is not study]
+        held.append(Planned(study, tuple(study.plan(self.own(), self.check))))
+        return replace(self, studies=tuple(sorted(held, key=lambda p: studies.rank(p.study))))
 
 
 #: the metamorphic relation a default run adds where no other solver compares with one
@@ -237,8 +258,8 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
               dir_name: str | None = None, limits: Limits | None = None,
               explicit: bool = True) -> CasePlan:
     """Load and validate a case (``CaseError`` on bad input, or a unit beyond the
-    ``limits``) and plan its runs (the grid studies of ``run --convergence`` are added by
-    :func:`reports.run.study_runs.add_grids`).  ``explicit``: the solvers were named by the
+    ``limits``) and plan its runs (the studies a flag asks for are added by
+    :func:`request_study`).  ``explicit``: the solvers were named by the
     user; otherwise a solver that runs on a case only on request
     (:func:`reports.registry.solvers.not_by_default`) is left out with its reason."""
     source = case_path(ref)
@@ -273,23 +294,26 @@ def plan_case(ref: str | Path, solver_names: list[str], *, quick: bool = False,
                         f"case ({why or 'no solver chosen'})")
     for i, s in plan.units():
         plan.limits.check(points[i], s)
-    return _add_probes(plan)
+    return _add_automatic(plan)
 
 
-def _add_probes(plan: CasePlan) -> CasePlan:
-    """``plan`` with a resolution probe for every worn point where a solver with a step
-    width runs beside :data:`reports.studies.resolution.PROBE_SOLVER`
-    (:mod:`reports.studies.probe`), checked like the units (``CaseError`` naming the point)."""
-    runs = []
-    for i, case in enumerate(plan.points):
-        width = resolution.probed_width(case, plan.applicable(case))
-        if width is None:
-            continue
-        c = probe.probe_case(case, width)
-        reason = solvers.unsupported(resolution.PROBE_SOLVER, c)
-        if reason is not None:
-            where = case.name + (f" [{case.param}]" if case.param else "")
-            raise CaseError(f"resolution probe: {where}: {reason}")
-        plan.limits.check(c, resolution.PROBE_SOLVER)
-        runs.append(probe.ProbeRun(i, resolution.PROBE_SOLVER, width, c))
-    return replace(plan, probes=runs)
+def _add_automatic(plan: CasePlan) -> CasePlan:
+    """``plan`` with every study no flag asks for (``option`` None) that plans runs for it,
+    e.g. the resolution probe of worn points (:mod:`reports.studies.probe`)."""
+    for study in studies.STUDIES:
+        if study.option is None:
+            held = plan.with_study(study)
+            plan = held if held.planned(study).runs else plan
+    return plan
+
+
+def request_study(plans: list[CasePlan], name: str) -> tuple[list[CasePlan], list[str]]:
+    """``plans`` with the study ``name`` that a flag asked for (``Study.option``), and a note
+    on each case it has nothing to study in; UserError when no plan gets a run of it."""
+    study = studies.by_name(name)
+    plans = [p.with_study(study) for p in plans]
+    if not any(p.planned(study).runs for p in plans):
+        raise UserError(f"{study.option}: {study.nothing_planned([p.own() for p in plans])}")
+    notes = [n for p in plans if not p.planned(study).runs
+             if (n := study.idle_note(p.own())) is not None]
+    return plans, notes

@@ -10,10 +10,10 @@ over each output step as soon as it is computed (``on_output``, :mod:`reports.re
 and the serial executor writes it into the staging directory at once, so an interrupted
 long run keeps the steps it finished there (``fields/<solver>/<param>/``).
 Runs do not resume: re-running says so, discards the staging directory and restarts the
-case cleanly.  With ``plan.convergence`` (``run --convergence``) the coarse grids of the
-grid studies run after the case's own units, through the same executor, and
-``convergence.csv`` is written into the staging directory with the rest
-(:mod:`reports.studies.gridstudy`).
+case cleanly.  The runs of the plan's studies (:mod:`reports.studies.study`: the grid
+studies of ``run --convergence``, the resolution probe, …) run after the case's own units,
+through the same executor, and each study's table is written into the staging directory
+with the rest (:mod:`reports.run.study_runs`).
 
 The stages live in their own modules: planning (:mod:`reports.run.plan`), one unit
 (:mod:`reports.run.units`), writing (:mod:`reports.store.write`), the staging directory
@@ -39,14 +39,21 @@ from reports.compare import verdict
 from reports.compare.point import point_rows
 from reports.registry.errors import UserError
 from reports.registry.tolerances import TOLERANCE_COLUMNS
-from reports.run import probe_runs, study_runs
+from reports.run import study_runs
 from reports.run.plan import CasePlan
 from reports.run.units import Executor, UnitOutcome, failure_line, serial_executor
 from reports.store import layout, manifest
 from reports.store.event_table import events_frame
 from reports.store.staging import case_lock, claim_staging, remove_dir
 from reports.store.write import jsonable, summary_frame, write_csv, write_unit
-from reports.studies import gridstudy, jumpstudy, probe, uncertainty
+from reports.studies.probe import PROBE
+from reports.studies.registry import STUDIES
+from reports.studies.study import Own, Study, StudyTable
+
+
+def _study_files() -> frozenset[str]:
+    """The tables the studies write into a case directory."""
+    return frozenset(layout.study_file(s.name) for s in STUDIES)
 
 
 @dataclass
@@ -71,7 +78,7 @@ class _Collected:
     rows: dict[tuple[int, int], list[dict[str, Any]]] = field(default_factory=dict)
     events: dict[tuple[int, int], list[dict[str, Any]]] = field(default_factory=dict)
     metrics: dict[int, pd.DataFrame] = field(default_factory=dict)
-    kept: dict[tuple[int, str], RunResult] = field(default_factory=dict)  # for the probe
+    kept: dict[tuple[int, str], RunResult] = field(default_factory=dict)  # for the studies
     records: list[dict[str, Any]] = field(default_factory=list)
     failures: list[UnitOutcome] = field(default_factory=list)
 
@@ -94,7 +101,10 @@ def _collect(plan: CasePlan, staging: Path, executor: Executor, progress: bool |
     order = {s: k for k, s in enumerate(plan.solvers)}
     pending: dict[int, dict[str, RunResult]] = {}
     got = _Collected()
-    keep = probe_runs.kept(plan)
+    keep = {(r.point, r.solver) for p in plan.studies if p.study.keeps_results
+            for r in p.runs}
+    # the comparisons count the probing solver's cells where the probe runs (point_rows)
+    probed = {r.point for p in plan.studies if p.study is PROBE for r in p.runs}
     bar = tqdm(total=len(units), desc=plan.dir_name, unit="run", leave=False,
                disable=None if progress is None else not progress)
 
@@ -137,7 +147,7 @@ def _collect(plan: CasePlan, staging: Path, executor: Executor, progress: bool |
             try:
                 got.metrics[outcome.index] = point_rows(
                     plan.points[outcome.index], ordered,
-                    probed=any(g.point == outcome.index for g in plan.probes))
+                    probed=outcome.index in probed)
             except Exception as exc:  # a result the comparisons cannot digest
                 got.failures.append(_failed(outcome, "comparing its results", exc))
                 break
@@ -194,30 +204,25 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     final = layout.case_dir(out, plan.dir_name)
     if final.exists() or final.is_symlink():
         mine = final.is_dir() and not final.is_symlink()
-        other = layout.foreign(final) if mine else final
+        other = layout.foreign(final, _study_files()) if mine else final
         if other is not None:
             raise UserError(f"{final} exists and is not a contact-vv result ({other} is not "
                             "a file a run writes); refusing to replace it (choose another "
                             "--out)")
-    staging = claim_staging(out, plan.dir_name)
+    staging = claim_staging(out, plan.dir_name, _study_files())
     plan = replace(plan, staging=staging)
     remove_dir(final)  # an older result must not outlive a newer, failing run
 
     got = _collect(plan, staging, executor, progress)
-    study = None
-    if plan.convergence and not got.failures:  # the coarse grids of the grid studies
-        fine = {(i, plan.solvers[k]): rows for (i, k), rows in got.rows.items()}
-        study = study_runs.run_grids(plan, executor, progress, fine)
-        got.records += study.records
-    jumps = None
-    if plan.jump_study and plan.jumps and not got.failures:  # J/2 and J/4 of fretting runs
-        fine = {(i, plan.solvers[k]): rows for (i, k), rows in got.rows.items()}
-        jumps = study_runs.run_jumps(plan, executor, progress, fine)
-        got.records += jumps.records
-    probed = None
-    if plan.probes and not got.failures:  # the resolution probe of worn points
-        probed = probe_runs.run_probes(plan, executor, progress, got.kept)
-        got.records += probed.records
+    own = Own(plan.points, plan.units(), plan.applicable,
+              {(i, plan.solvers[k]): rows for (i, k), rows in got.rows.items()}, got.kept)
+    evidence: list[tuple[Study, StudyTable]] = []
+    for planned in plan.studies:  # each study's runs, in the registry's order
+        if got.failures or not (planned.runs or planned.study.table_without_runs):
+            continue
+        found, records = study_runs.run_study(plan, planned, executor, progress, own)
+        evidence.append((planned.study, found))
+        got.records += records
     unit_wall = float(sum(r["wall_s"] for r in got.records))
     run = CaseRun(plan.dir_name, None, wall_s=time.perf_counter() - t0, unit_wall_s=unit_wall)
     if got.failures:
@@ -229,14 +234,9 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
         return run
 
     summary = summary_frame([r for key in sorted(got.rows) for r in got.rows[key]])
-    if study is not None:
-        write_csv(staging / layout.CONVERGENCE, study.table)
-        summary = gridstudy.flag_summary(summary, study.table)
-    if jumps is not None:
-        write_csv(staging / layout.JUMP_STUDY, jumps.table)
-        summary = jumpstudy.flag_summary_jump(summary, jumps.table)
-    if probed is not None:
-        write_csv(staging / layout.PROBE, probed.table)
+    for study, found in evidence:
+        write_csv(staging / layout.study_file(study.name), found.table)
+        summary = study.summary(summary, found.table)
     write_csv(staging / layout.SUMMARY, summary)
     if got.events:  # some solver watched for regime events (reports.store.event_table)
         write_csv(staging / layout.EVENTS,
@@ -244,23 +244,17 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     parts = [got.metrics[i] for i in sorted(got.metrics) if not got.metrics[i].empty]
     if parts:  # the verdict, once, with the studies' evidence
         rows = pd.concat(parts, ignore_index=True)
-        metrics = verdict.decide(
-            rows,
-            grid=None if study is None else gridstudy.flags(rows, study.table),
-            uncertainty=None if study is None else uncertainty.values(
-                rows, study.table, {c.param: c for c in plan.points}),
-            jump=None if jumps is None else jumpstudy.flags_jump(rows, jumps.table),
-            probe=None if probed is None else probe.flags(rows, probed.table,
-                                                          probed.failed))
+        metrics = verdict.decide(rows, [f for study, found in evidence
+                                         for f in study.evidence(rows, found, own)])
     else:  # a single solver: the header only
         metrics = pd.DataFrame(columns=verdict.METRICS_COLUMNS + (
-            TOLERANCE_COLUMNS if study is not None else []))
+            TOLERANCE_COLUMNS if evidence else []))
     write_csv(staging / layout.METRICS, metrics)
     body = _manifest_body(plan, got, t0, unit_wall, sources)
-    if plan.convergence:
-        body["convergence"] = study_runs.grid_manifest_entry(plan)
-    if plan.jump_study:
-        body["jump_study"] = study_runs.jump_manifest_entry(plan)
+    for planned in plan.studies:
+        entry = planned.study.manifest(plan.own(), list(planned.runs))
+        if entry is not None:
+            body[planned.study.name] = entry
     manifest.write(staging, {**body, **extra_manifest})
     remove_dir(final)
     os.replace(staging, final)

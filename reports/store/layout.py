@@ -16,6 +16,8 @@
     DIR/<case>/probe.csv                          worn points the FEM runs: one row per
                                                   (param, pair, step, quantity, metric) of
                                                   the resolution probe (reports.studies.probe)
+    DIR/<case>/<study>.csv                        the table of any study of the run
+                                                  (reports.studies.study, study_file)
     DIR/<case>/fields/<solver>/<param>/step_NNNN.npz   surface fields and planes
     DIR/<case>/fields/<solver>/<param>/step_NNNN.vtu   FEM meshes (ParaView)
     DIR/<case>/fields/<solver>/<param>/step_NNNN_surface.vtu   grid steps: surface cells
@@ -40,9 +42,17 @@ from pathlib import Path
 MANIFEST = "manifest.json"
 SUMMARY = "summary.csv"
 METRICS = "metrics.csv"
-CONVERGENCE = "convergence.csv"
-JUMP_STUDY = "jump_study.csv"
-PROBE = "probe.csv"
+
+
+def study_file(name: str) -> str:
+    """The table of the study ``name`` in a case directory (:mod:`reports.studies.study`)."""
+    return f"{name}.csv"
+
+
+#: the tables of the studies the store knows (:mod:`reports.store.study_tables`)
+CONVERGENCE = study_file("convergence")
+JUMP_STUDY = study_file("jump_study")
+PROBE = study_file("probe")
 EVENTS = "events.csv"
 FIELDS = "fields"
 PARTIAL_SUFFIX = ".partial"
@@ -57,6 +67,7 @@ REPORT = "index.html"
 ARTICLE = "article.html"
 ARTICLE_DIR = "article"
 CLAIMS = "claims.csv"
+
 
 #: names a case directory may hold; a directory with none of them is not a result
 OWN_NAMES = frozenset({MANIFEST, SUMMARY, METRICS, CONVERGENCE, JUMP_STUDY, PROBE, EVENTS,

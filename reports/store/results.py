@@ -12,7 +12,6 @@ files changed after the run) or ``damaged`` (a file that cannot be read).
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
 from pathlib import Path
 from typing import Any
 
@@ -35,14 +34,7 @@ from reports.store.readers import (
     read_sweep_check,
     read_table,
 )
-from reports.store.study_tables import (
-    CONVERGENCE_COLUMNS,
-    JUMP_COLUMNS,
-    PROBE_COLUMNS,
-    read_convergence,
-    read_jump_study,
-    read_probe,
-)
+from reports.store.study_tables import TABLES, read_study_table
 
 # --------------------------------------------------------------------- results
 
@@ -62,6 +54,7 @@ class CaseResults:
     manifest: dict[str, Any]
     summary: pd.DataFrame
     metrics: pd.DataFrame
+    _studies: dict[str, pd.DataFrame] = field(default_factory=dict, repr=False)
 
     @property
     def name(self) -> str:
@@ -79,29 +72,13 @@ class CaseResults:
         folder = layout.unit_dir(self.path, solver, param)
         return {f.stem: read_result(f, read_table) for f in sorted(folder.glob("*.csv"))}
 
-    @cached_property
-    def convergence(self) -> pd.DataFrame:
-        """The grid studies of ``run --convergence`` (an empty table without them)."""
-        path = self.path / layout.CONVERGENCE
-        if not path.exists():
-            return pd.DataFrame(columns=CONVERGENCE_COLUMNS)
-        return read_result(path, read_convergence)
-
-    @cached_property
-    def jump_study(self) -> pd.DataFrame:
-        """The cycle-jump studies of ``run --jump-study`` (an empty table without them)."""
-        path = self.path / layout.JUMP_STUDY
-        if not path.exists():
-            return pd.DataFrame(columns=JUMP_COLUMNS)
-        return read_result(path, read_jump_study)
-
-    @cached_property
-    def probe(self) -> pd.DataFrame:
-        """The resolution probe of worn points (an empty table where none ran)."""
-        path = self.path / layout.PROBE
-        if not path.exists():
-            return pd.DataFrame(columns=PROBE_COLUMNS)
-        return read_result(path, read_probe)
+    def study(self, name: str) -> pd.DataFrame:
+        """The table of the run's study ``name`` (:mod:`reports.studies.study`;
+        :func:`reports.store.study_tables.read_study_table`): an empty table where it did not
+        run."""
+        if name not in self._studies:
+            self._studies[name] = read_study_table(self.path, name)
+        return self._studies[name]
 
     @property
     def events(self) -> pd.DataFrame:
@@ -129,9 +106,8 @@ class CaseResults:
                 self.tables(solver, param)
         if (self.path / layout.SWEEP_CHECK).exists():
             read_result(self.path / layout.SWEEP_CHECK, read_sweep_check)
-        _ = self.convergence
-        _ = self.jump_study
-        _ = self.probe
+        for name in TABLES:
+            self.study(name)
         _ = self.events
 
 

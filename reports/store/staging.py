@@ -108,17 +108,19 @@ def open_lock(path: Path):
     return os.fdopen(fd, "r+")
 
 
-def _ours(path: Path) -> bool:
+def _ours(path: Path, extra: frozenset[str]) -> bool:
     """Whether a staging directory holds only what a run writes into one, at any depth
-    (:func:`reports.store.layout.foreign`)."""
-    return layout.foreign(path, _STAGING_EXTRA) is None
+    (:func:`reports.store.layout.foreign`; ``extra``: more names a run writes at the top)."""
+    return layout.foreign(path, _STAGING_EXTRA | extra) is None
 
 
-def claim_staging(out: Path, name: str) -> Path:
-    """Create a fresh staging directory for ``name`` (the caller holds the case's lock)."""
+def claim_staging(out: Path, name: str, extra: frozenset[str] = frozenset()) -> Path:
+    """Create a fresh staging directory for ``name`` (the caller holds the case's lock);
+    ``extra``: names beyond :data:`reports.store.layout.OWN_NAMES` a run writes at the top
+    (the studies' tables)."""
     staging = layout.staging_dir(out, name)
     if staging.exists() or staging.is_symlink():
-        if staging.is_symlink() or not (staging.is_dir() and _ours(staging)):
+        if staging.is_symlink() or not (staging.is_dir() and _ours(staging, extra)):
             raise UserError(f"{staging} exists and is not a contact-vv staging directory; "
                             "refusing to remove it (choose another --out)")
         kept = sum(1 for _ in staging.rglob("step_*.npz"))

@@ -1,15 +1,19 @@
 """The study tables of a results directory: ``convergence.csv`` (grid studies,
 ``run --convergence``), ``jump_study.csv`` (cycle-jump studies, ``run --jump-study``) and
 ``probe.csv`` (the resolution probe, :mod:`reports.studies.probe`), their columns, the
-statuses a row may hold, and their readers."""
+statuses a row may hold, and their readers; the table of a study the store does not know
+(:mod:`reports.studies.study`) is read as a solver table, by its name."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from dataclasses import dataclass
 from pathlib import Path
 
 import pandas as pd
 
-from reports.store.readers import Malformed, read_csv
+from reports.store import layout
+from reports.store.readers import Malformed, read_csv, read_result, read_table
 
 #: statuses of a three-level study (:func:`reports.studies.convergence.classify`)
 CONVERGED, OSCILLATING, NOT_CONVERGED, EXACT = "converged", "oscillating", "not converged", \
@@ -59,3 +63,28 @@ def read_probe(path: Path) -> pd.DataFrame:
     """``probe.csv`` (a parser for :func:`reports.store.readers.read_result`)."""
     return read_csv(path, required=PROBE_COLUMNS, text=("param", "pair", "quantity", "metric"),
                     numeric=["cycle", "sensitivity", "width", "spread"], integer=["step"])
+
+
+@dataclass(frozen=True)
+class Table:
+    """A study table the store knows: its columns and its parser."""
+
+    columns: list[str]
+    parse: Callable[[Path], pd.DataFrame]
+
+
+#: the study tables the store knows, by study name
+TABLES = {"convergence": Table(CONVERGENCE_COLUMNS, read_convergence),
+          "jump_study": Table(JUMP_COLUMNS, read_jump_study),
+          "probe": Table(PROBE_COLUMNS, read_probe)}
+
+
+def read_study_table(folder: Path, name: str) -> pd.DataFrame:
+    """The table of study ``name`` in the case directory ``folder``
+    (:func:`reports.store.layout.study_file`; :class:`DamagedResult` if it cannot be read);
+    an empty table, with the known columns, where the study did not run."""
+    known = TABLES.get(name)
+    path = Path(folder) / layout.study_file(name)
+    if not path.exists():
+        return pd.DataFrame(columns=known.columns if known else [])
+    return read_result(path, known.parse if known else read_table)

@@ -1,6 +1,8 @@
 """Grid and jump studies, the resolution probe, numerical uncertainty, events and the
-article's claims. Its public face is the modules the other rooms import (``__all__``;
-``tests/test_suite_public_api.py`` keeps it true); the others are its own."""
+article's claims.  A study of a run is one protocol (:mod:`reports.studies.study`), its
+instances listed in :mod:`reports.studies.registry`.  Its public face is the modules the
+other rooms import (``__all__``; ``tests/test_suite_public_api.py`` keeps it true); the
+others are its own."""
 
 __all__ = [
     "claims",
@@ -9,5 +11,6 @@ __all__ = [
     "gridstudy",
     "jumpstudy",
     "probe",
-    "uncertainty",
+    "registry",
+    "study",
 ]

@@ -1,5 +1,6 @@
 """Grid-convergence studies as part of a run: ``contact-vv run CASE --convergence``
-(the runs themselves: :mod:`reports.run.study_runs`).
+(:data:`GRID_STUDY`, a :class:`reports.studies.study.Study`; the runs themselves:
+:mod:`reports.run.study_runs`).
 
 For every sweep point and every numerical solver that can refine its discretisation
 (``SolverRecord.refine`` in :mod:`reports.registry.solvers`: the case grid ``grid.nx, grid.ny``
@@ -49,11 +50,13 @@ import numpy as np
 import pandas as pd
 
 from cases.model import Case, CaseError
-from reports.compare.verdict import Flags
+from reports.compare.verdict import Evidence, Flags, Uncertainty
 from reports.registry import solvers
 from reports.registry.tolerances import budget
 from reports.store.study_tables import CONVERGED, CONVERGENCE_COLUMNS, EXACT
-from reports.studies import convergence
+from reports.store.write import jsonable
+from reports.studies import convergence, uncertainty
+from reports.studies.study import Check, Levels, Own, StudyRun, StudyTable
 
 #: the smallest refinement ratio between consecutive grids
 RATIO = 1.5
@@ -238,3 +241,107 @@ def note_lines(case: str, frame: pd.DataFrame, kind: Kind = GRID) -> list[str]:
             f"f = {r.f1:.6g}, {r.f2:.6g}, {r.f3:.6g} on {kind.symbol} = {r.h1:.4g}, "
             f"{r.h2:.4g}, {r.h3:.4g}{kind.unit}; {order}" + (f" ({r.note})" if r.note else ""))
     return lines
+
+
+def by_step(rows: list[dict[str, Any]]) -> dict[int, dict[str, Any]]:
+    """Summary rows by step number."""
+    return {int(r["step"]): r for r in rows}
+
+
+class GridStudy:
+    """The grid studies of ``run --convergence`` (module doc) as a
+    :class:`reports.studies.study.Study`."""
+
+    name, option, label = "convergence", "--convergence", "grids"
+    keeps_results, table_without_runs = False, True
+
+    @staticmethod
+    def studied(own: Own) -> list[tuple[int, str]]:
+        """The (point, solver) units with a grid study: numerical solvers whose record
+        knows how to refine."""
+        return [(i, s) for i, s in own.units
+                if solvers.record(s).refine is not None and not solvers.record(s).closed_form]
+
+    def plan(self, own: Own, check: Check) -> list[StudyRun]:
+        """Grids 2 and 3 of every studied unit, checked like the case (``CaseError`` naming
+        the grid)."""
+        runs = []
+        for i, s in self.studied(own):
+            case = own.points[i]
+            where = case.name + (f" [{case.param}]" if case.param else "")
+            try:
+                for level, c in zip((2, 3), coarse_cases(s, case), strict=True):
+                    reason = solvers.unsupported(s, c)
+                    if reason is not None:
+                        raise CaseError(f"solver {s} does not support grid {level}: {reason}")
+                    check(c, s)
+                    runs.append(StudyRun(i, s, level, c))
+            except CaseError as exc:
+                raise CaseError(f"{self.option}: {where}: {exc}") from None
+        return runs
+
+    def describe(self, run: StudyRun) -> dict[str, Any]:
+        return {"grid": run.level, "cell_size": solvers.record(run.solver).cell_size(run.case)}
+
+    def table(self, own: Own, runs: list[StudyRun], levels: Levels) -> StudyTable:
+        """``convergence.csv``: one row per (solver, sweep point, step, studied quantity)."""
+        rows = []
+        for i, s in self.studied(own):
+            case = own.points[i]
+            rec = solvers.record(s)
+            fine = by_step(own.rows.get((i, s), []))
+            coarse, h, failed = [], [rec.cell_size(case)], []
+            for level in (2, 3):
+                key = (i, s, level)
+                g = next(g for g in runs if (g.point, g.solver, g.level) == key)
+                h.append(rec.cell_size(g.case))
+                if key in levels.rows:
+                    coarse.append(by_step(levels.rows[key]))
+                else:
+                    coarse.append({})
+                    failed.append(f"grid {level} failed ({levels.errors.get(key, 'not run')})")
+            for step in sorted(fine):
+                for q in STUDIED:
+                    f = (value_of(fine[step], q), value_of(coarse[0].get(step), q),
+                         value_of(coarse[1].get(step), q))
+                    if q not in fine[step] or all(math.isnan(v) for v in f):
+                        continue  # the solver does not report it
+                    rows.append(study_row(s, case.param, step, q, tuple(h), f, failed))
+        frame = pd.DataFrame.from_records(rows, columns=CONVERGENCE_COLUMNS)
+        return StudyTable(frame.astype({"step": "int64"}) if not frame.empty else frame)
+
+    def summary(self, summary: pd.DataFrame, table: pd.DataFrame) -> pd.DataFrame:
+        return flag_summary(summary, table, FLAG_COLUMN)
+
+    def evidence(self, rows: pd.DataFrame, evidence: StudyTable, own: Own) -> list[Evidence]:
+        """The grids' flags (:func:`flags`) and the uncertainty U of every row
+        (:func:`reports.studies.uncertainty.values`)."""
+        found: list[Evidence] = []
+        if (f := flags(rows, evidence.table)) is not None:
+            found.append(f)
+        u = uncertainty.values(rows, evidence.table, {c.param: c for c in own.points})
+        if u is not None:
+            found.append(Uncertainty(u))
+        return found
+
+    def manifest(self, own: Own, runs: list[StudyRun]) -> dict[str, Any]:
+        """The ratio, the quantities and, per coarse run, its keys."""
+        return {"ratio": RATIO, "quantities": list(STUDIED),
+                "grids": [{"solver": g.solver, "param": g.case.param, "grid": g.level,
+                           "cell_size": solvers.record(g.solver).cell_size(g.case),
+                           "changes": jsonable(changes(own.points[g.point], g.case))}
+                          for g in runs]}
+
+    def notes(self, case: str, table: pd.DataFrame) -> list[str]:
+        return note_lines(case, table, GRID)
+
+    def nothing_planned(self, owns: list[Own]) -> str:
+        names = sorted({s for own in owns for _, s in own.units})
+        return (f"no run has a grid to refine (solver(s) {', '.join(names)}: closed forms "
+                "have none); add a numerical solver, e.g. --solver ic")
+
+    def idle_note(self, own: Own) -> str | None:
+        return None
+
+
+GRID_STUDY = GridStudy()

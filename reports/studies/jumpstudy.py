@@ -1,5 +1,6 @@
-"""Cycle-jump studies of fretting runs: ``contact-vv run CASE --jump-study`` (the runs
-themselves: :mod:`reports.run.study_runs`).
+"""Cycle-jump studies of fretting runs: ``contact-vv run CASE --jump-study``
+(:data:`JUMP_STUDY`, a :class:`reports.studies.study.Study`; the runs themselves:
+:mod:`reports.run.study_runs`).
 
 A fretting run simulates one cycle in J (``fretting.jump``): simulated cycle n stands for
 the real cycles (n − 1) J + 1 … n J and wears J times its own wear (docs/formulation.md
@@ -30,13 +31,25 @@ A solver without a cycle jump (a closed form, J = 1 exactly) is not studied.
 from __future__ import annotations
 
 import dataclasses
+import math
+from typing import Any
 
 import pandas as pd
 
-from cases.model import Case
-from reports.compare.verdict import Flags
+from cases.model import Case, CaseError
+from reports.compare.verdict import Evidence, Flags
 from reports.registry import solvers
-from reports.studies.gridstudy import Kind, flag_summary, flags, note_lines
+from reports.store.study_tables import JUMP_COLUMNS
+from reports.studies.gridstudy import (
+    STUDIED,
+    Kind,
+    flag_summary,
+    flags,
+    note_lines,
+    study_row,
+    value_of,
+)
+from reports.studies.study import Check, Levels, Own, StudyRun, StudyTable
 
 #: the jump is halved from one level to the next
 RATIO = 2.0
@@ -67,17 +80,114 @@ def finer_cases(case: Case) -> list[Case]:
             for k in (RATIO, RATIO * RATIO)]
 
 
-def flag_summary_jump(summary: pd.DataFrame, frame: pd.DataFrame) -> pd.DataFrame:
-    """``summary`` with :data:`FLAG_COLUMN` (:func:`reports.studies.gridstudy.flag_summary`)."""
-    return flag_summary(summary, frame, FLAG_COLUMN)
+def by_cycle(rows: list[dict[str, Any]]) -> dict[float, dict[str, Any]]:
+    """Summary rows by cycle (rows without one left out)."""
+    return {float(r["cycle"]): r for r in rows
+            if r.get("cycle") is not None and math.isfinite(float(r["cycle"]))}
 
 
-def flags_jump(metrics: pd.DataFrame, frame: pd.DataFrame) -> Flags | None:
-    """The findings of a cycle-jump study on ``metrics`` (:func:`reports.studies.gridstudy.flags`;
-    budgets in cells use the run's grid)."""
-    return flags(metrics, frame, JUMP)
+class JumpStudy:
+    """The cycle-jump studies of ``run --jump-study`` (module doc) as a
+    :class:`reports.studies.study.Study`."""
+
+    name, option, label = "jump_study", "--jump-study", "jumps"
+    keeps_results, table_without_runs = False, False
+
+    def plan(self, own: Own, check: Check) -> list[StudyRun]:
+        """J/2 and J/4 of every studied unit, checked before any work (``CaseError``
+        naming the level)."""
+        runs = []
+        for i, s in own.units:
+            case = own.points[i]
+            if not_studied(s, case) is not None:
+                continue
+            where = case.name + (f" [{case.param}]" if case.param else "")
+            for level, c in zip((2, 3), finer_cases(case), strict=True):
+                try:
+                    reason = solvers.unsupported(s, c)
+                    if reason is not None:
+                        raise CaseError(f"solver {s} does not support J = "
+                                        f"{c.fretting.jump:g}: {reason}")
+                    check(c, s)
+                except CaseError as exc:
+                    raise CaseError(f"{self.option}: {where}: {exc}") from None
+                runs.append(StudyRun(i, s, level, c))
+        return runs
+
+    def describe(self, run: StudyRun) -> dict[str, Any]:
+        return {"study": "jump", "level": run.level, "jump": run.case.fretting.jump}
+
+    def table(self, own: Own, runs: list[StudyRun], levels: Levels) -> StudyTable:
+        """``jump_study.csv``: one row per (solver, sweep point, output cycle, quantity)."""
+        rows = []
+        for i, s in dict.fromkeys((g.point, g.solver) for g in runs):
+            case = own.points[i]
+            J = case.fretting.jump
+            fine = by_cycle(own.rows.get((i, s), []))
+            at, failed = [], []
+            for level in (2, 3):
+                key = (i, s, level)
+                if key in levels.rows:
+                    at.append(by_cycle(levels.rows[key]))
+                else:
+                    at.append({})
+                    failed.append(f"J/{RATIO ** (level - 1):g} failed "
+                                  f"({levels.errors.get(key, 'not run')})")
+            h = (J / RATIO ** 2, J / RATIO, J)
+            cell = solvers.record(s).cell_size(case)
+            for cycle in sorted(fine):
+                f_own = fine[cycle]
+                for q in STUDIED:
+                    f = (value_of(at[1].get(cycle), q), value_of(at[0].get(cycle), q),
+                         value_of(f_own, q))
+                    if q not in f_own or all(math.isnan(v) for v in f):
+                        continue  # the solver does not report it
+                    row = study_row(s, case.param, int(f_own["step"]), q, h, f, failed)
+                    change = (f[1] - f[2]) / abs(f[2]) if f[2] != 0 else \
+                        (0.0 if f[1] == 0 else math.inf)
+                    rows.append({**row, "cycle": cycle, "change_halved": change,
+                                 "cell_size": cell})
+        frame = pd.DataFrame.from_records(rows, columns=JUMP_COLUMNS)
+        return StudyTable(frame.astype({"step": "int64"}) if not frame.empty else frame)
+
+    def summary(self, summary: pd.DataFrame, table: pd.DataFrame) -> pd.DataFrame:
+        return flag_summary(summary, table, FLAG_COLUMN)
+
+    def evidence(self, rows: pd.DataFrame, evidence: StudyTable, own: Own) -> list[Evidence]:
+        """The jumps' flags (:func:`reports.studies.gridstudy.flags`; budgets in cells use
+        the run's grid), after the uncertainty."""
+        found = flags(rows, evidence.table, JUMP)
+        return [] if found is None else [Flags(found.dropped, found.kept, late=True)]
+
+    def manifest(self, own: Own, runs: list[StudyRun]) -> dict[str, Any]:
+        """The ratio, the quantities and, per (point, solver), the jumps studied or why
+        not."""
+        units = []
+        for i, s in own.units:
+            case = own.points[i]
+            why = not_studied(s, case)
+            entry: dict[str, Any] = {"solver": s, "param": case.param}
+            if why is None:
+                entry["jumps"] = [case.fretting.jump / RATIO ** k for k in range(3)]
+            else:
+                entry["not_studied"] = why
+            units.append(entry)
+        return {"ratio": RATIO, "quantities": list(STUDIED), "units": units}
+
+    def notes(self, case: str, table: pd.DataFrame) -> list[str]:
+        """``NOT CONVERGED (jump) …`` lines for the gate."""
+        return note_lines(case, table, JUMP)
+
+    def nothing_planned(self, owns: list[Own]) -> str:
+        why = sorted({f"{own.points[i].name}: {not_studied(s, own.points[i])}"
+                      for own in owns for i, s in own.units})
+        return "no run has a cycle jump to halve (" + "; ".join(why) + ")"
+
+    def idle_note(self, own: Own) -> str | None:
+        if not any(c.kind == "fretting" for c in own.points):
+            return None
+        return (f"{own.points[0].name}: no cycle jump to halve (fretting.jump = "
+                f"{own.points[0].fretting.jump:g})")
 
 
-def note_lines_jump(case: str, frame: pd.DataFrame) -> list[str]:
-    """``NOT CONVERGED (jump) …`` lines for the gate."""
-    return note_lines(case, frame, JUMP)
+JUMP_STUDY = JumpStudy()

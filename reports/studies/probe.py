@@ -1,5 +1,6 @@
 """The resolution probe: which compared quantities of a worn contact a solver's surface
-resolution can give (issue 51; the runs: :mod:`reports.run.probe_runs`).
+resolution can give (issue 51; :data:`PROBE`, a :class:`reports.studies.study.Study`, run
+wherever it plans runs).
 
 Wear leaves a step in the worn profile where slip meets stick. The half-space solver holds
 it sharp at a cell face; a solver whose surface is polynomial within an element
@@ -26,13 +27,21 @@ import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
-from cases.model import Case
-from reports.compare.verdict import Flags
-from reports.registry.resolution import probed_pair
+from cases.model import Case, CaseError
+from cases.result import RunResult
+from reports.compare.metrics import scalar
+from reports.compare.point import common_steps, pair_cell, pair_reach, step_values
+from reports.compare.verdict import Evidence, Flags
+from reports.registry import solvers
+from reports.registry.pairs import pairs
+from reports.registry.resolution import PROBE_SOLVER, probed_pair, probed_width
+from reports.store.study_tables import PROBE_COLUMNS
+from reports.studies.study import Check, Levels, Own, StudyRun, StudyTable
 
 #: the spread's half-width in element widths.  Measured (docs/fem-notes.md, part 5, "Why";
 #: the quick grid in ``benchmarks/README.md``, "The resolution probe"): a tent of 0.5–0.8
@@ -47,15 +56,11 @@ FRACTION = 0.5
 
 
 @dataclass(frozen=True)
-class ProbeRun:
+class ProbeRun(StudyRun):
     """The probe of sweep point ``point``: ``solver`` on ``case``, its wear spread over
     ``width`` × :data:`SPREAD` (``level`` 0: one run, not a refinement level)."""
 
-    point: int
-    solver: str
-    width: float
-    case: Case
-    level: int = 0
+    width: float = math.nan
 
 
 def probe_case(case: Case, width: float) -> Case:
@@ -104,7 +109,6 @@ def flags(metrics: pd.DataFrame, table: pd.DataFrame,
     return Flags(dropped=dropped)
 
 
-
 def note(sensitivity: float, limit: float, width: float, spread: float) -> str:
     """Why the probe does not gate a row: the measured sensitivity, and the element width
     that would bring it under the limit at first order."""
@@ -126,3 +130,92 @@ def admitted(metrics: pd.DataFrame, table: pd.DataFrame) -> pd.DataFrame:
     ok = np.isfinite(tolerance) & (table["sensitivity"].to_numpy(float)
                                    <= FRACTION * tolerance)
     return table.assign(tolerance=tolerance, admitted=ok)
+
+
+def table_rows(own: Own, g: ProbeRun, unit: RunResult, spread: RunResult
+               ) -> list[dict[str, Any]]:
+    """The rows of ``probe.csv`` for probe ``g``: for every probed pair of the point and
+    every output step, each quantity's change from the unit's own result ``unit`` to
+    ``spread`` by the pair's metric (:func:`reports.compare.point.step_values`)."""
+    case = own.points[g.point]
+    names = [f"{a}-{b}" for a, b in pairs(own.applicable(case))]
+    out = []
+    for pair in probed_pairs(names):
+        cell = pair_cell(case, *pair.split("-", 1))
+        reach = pair_reach(case, *pair.split("-", 1))
+        for n, sa, sb in common_steps(spread, unit):
+            for quantity, metric, value in step_values(case, pair, spread, unit, sa, sb, cell,
+                                                       reach):
+                out.append({"param": case.param, "pair": pair, "step": n,
+                            "cycle": scalar(sb, "cycle"), "quantity": quantity,
+                            "metric": metric, "sensitivity": value, "width": g.width,
+                            "spread": g.case.solver.wear_spread})
+    return out
+
+
+class ResolutionProbe:
+    """The resolution probe (module doc) as a :class:`reports.studies.study.Study`: it
+    runs wherever a worn point has a solver with a step width beside
+    :data:`reports.registry.resolution.PROBE_SOLVER`."""
+
+    name, option, label = "probe", None, "probe"
+    keeps_results, table_without_runs = True, False
+
+    def plan(self, own: Own, check: Check) -> list[StudyRun]:
+        """One run of every probed point, checked like the units (``CaseError`` naming
+        the point)."""
+        runs: list[StudyRun] = []
+        for i, case in enumerate(own.points):
+            width = probed_width(case, own.applicable(case))
+            if width is None:
+                continue
+            c = probe_case(case, width)
+            reason = solvers.unsupported(PROBE_SOLVER, c)
+            if reason is not None:
+                where = case.name + (f" [{case.param}]" if case.param else "")
+                raise CaseError(f"resolution probe: {where}: {reason}")
+            check(c, PROBE_SOLVER)
+            runs.append(ProbeRun(point=i, solver=PROBE_SOLVER, level=0, case=c, width=width))
+        return runs
+
+    def describe(self, run: StudyRun) -> dict[str, Any]:
+        assert isinstance(run, ProbeRun)
+        return {"study": "probe", "width": run.width, "wear_spread": run.case.solver.wear_spread}
+
+    def table(self, own: Own, runs: list[StudyRun], levels: Levels) -> StudyTable:
+        """``probe.csv``, each probe compared with the point's own run by every probed
+        pair's metrics, and why a point's probe failed."""
+        rows: list[dict[str, Any]] = []
+        failed = {}
+        for g in runs:
+            assert isinstance(g, ProbeRun)
+            key = (g.point, g.solver, g.level)
+            result = levels.results.get(key)
+            if result is None:
+                failed[g.case.param] = levels.errors.get(key, "not run")
+                continue
+            rows += table_rows(own, g, own.results[(g.point, g.solver)], result)
+        frame = pd.DataFrame.from_records(rows, columns=PROBE_COLUMNS)
+        return StudyTable(frame.astype({"step": "int64"}) if not frame.empty else frame, failed)
+
+    def summary(self, summary: pd.DataFrame, table: pd.DataFrame) -> pd.DataFrame:
+        return summary
+
+    def evidence(self, rows: pd.DataFrame, evidence: StudyTable, own: Own) -> list[Evidence]:
+        found = flags(rows, evidence.table, evidence.failed)
+        return [] if found is None else [found]
+
+    def manifest(self, own: Own, runs: list[StudyRun]) -> None:
+        return None
+
+    def notes(self, case: str, table: pd.DataFrame) -> list[str]:
+        return []  # its rows carry their own notes (:func:`note`)
+
+    def nothing_planned(self, owns: list[Own]) -> str:
+        return "no worn point has a solver with a step width beside " + PROBE_SOLVER
+
+    def idle_note(self, own: Own) -> str | None:
+        return None
+
+
+PROBE = ResolutionProbe()

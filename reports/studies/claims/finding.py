@@ -13,7 +13,7 @@ import pandas as pd
 
 from reports.registry import solvers
 from reports.store.results import CaseResults
-from reports.studies.gridstudy import SETTLED
+from reports.studies.gridstudy import GRID_STUDY, SETTLED
 
 #: the four verdicts, in the order of the claims table's legend
 HOLDS = "holds"
@@ -163,7 +163,7 @@ def measure(art: Article, source: str, solver: str, param: str, step: int, quant
     the grid study where ``run --convergence`` made one (module
     :mod:`reports.studies.gridstudy`; a study that does not converge says so, with the
     last refinement's change as a lower bound), else the solver's error budget."""
-    study = art.case(source).convergence
+    study = art.case(source).study(GRID_STUDY.name)
     row = study[(study["solver"] == solver) & (study["param"] == param)
                 & (study["step"] == step) & (study["quantity"] == quantity)]
     if not row.empty:
@@ -188,16 +188,16 @@ def study_evidence(case, param: str, step: int, quantities: tuple[str, ...]) -> 
     ``quantities``: the half-space solver's grid study status of each (``run
     --convergence``) and, where the FEM ran, the resolution probe's sensitivity against
     half the ic-fem tolerance (:mod:`reports.studies.probe`); '' without either."""
-    from reports.studies.probe import FRACTION, admitted
+    from reports.studies.probe import FRACTION, PROBE, admitted
 
     parts = []
-    grid = case.convergence
+    grid = case.study(GRID_STUDY.name)
     grid = grid[(grid["solver"] == "ic") & (grid["param"] == param) & (grid["step"] == step)]
     if not grid.empty:
         status = dict(zip(grid["quantity"], grid["status"], strict=True))
         parts.append("grid study: " + ", ".join(f"{q} {status[q]}" for q in quantities
                                                 if q in status))
-    table = case.probe
+    table = case.study(PROBE.name)
     table = table[(table["param"] == param) & (table["step"] == step)
                   & (table["pair"] == "ic-fem")]
     if not table.empty:

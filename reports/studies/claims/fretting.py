@@ -25,6 +25,7 @@ from reports.studies.claims.finding import (
     undecided,
 )
 from reports.studies.claims.sources import SOURCES
+from reports.studies.gridstudy import GRID_STUDY
 
 SRC = "fretting"
 #: the two normal controls the article leaves open, as sources (the transverse motion
@@ -256,7 +257,7 @@ CLAIM_12 = ("P", "p_max", "stick_area", "w_max", "wear_volume")
 
 def _grows(art: Article, src: str, param: str, step: int) -> bool:
     """Whether the grid study of p_max shows it growing with every refinement."""
-    study = art.case(src).convergence
+    study = art.case(src).study(GRID_STUDY.name)
     row = study[(study["solver"] == "ic") & (study["param"] == param)
                 & (study["step"] == step) & (study["quantity"] == "p_max")]
     if row.empty:
