@@ -42,6 +42,8 @@ autodoc_typehints = "signature"
 html_theme = "alabaster"
 html_title = "contact-vv"
 html_theme_options = {"page_width": "1100px", "sidebar_width": "260px"}
+html_static_path = ["_static"]
+html_css_files = ["site.css"]
 
 # Repository files outside docs/ that the site renders as pages (by an {include}): a
 # Markdown link to one of them becomes a link to its page.
