@@ -315,7 +315,7 @@ class Case:
 
     @property
     def sliding_friction(self) -> float:
-        """μ along ``load.slide_angle``: ‖d‖*_μ = √((μ1 d_e1)² + (μ2 d_e2)²), the friction
+        """μ along ``load.slide_angle``: ``‖d‖*_μ = √((μ1 d_e1)² + (μ2 d_e2)²)``, the friction
         force per unit pressure opposing gross slip along d (Eq. 13)."""
         c, s = self._slide_in_axes
         return math.hypot(self.friction.mu1 * c, self.friction.mu2 * s)

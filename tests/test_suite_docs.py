@@ -37,6 +37,11 @@ References to another book are skipped.  The rule:
 
 Second test: no file of the repository outside ``docs/`` refers to material that lives
 outside the repository (``FOREIGN``).
+
+Third test: a quoted title of ``benchmarks/README.md`` (``benchmarks/README.md, "Escapes"``,
+the quote possibly wrapped, in a comment too) starts one of its headings or the first line
+of one of its paragraphs (bold or not), so that a moved or renamed section leaves no
+quote dangling.
 """
 
 from __future__ import annotations
@@ -54,6 +59,8 @@ SCAN_DIRS = ("halfspace", "fem_reference", "analytic", "cases", "reports", "exte
              "tests", "benchmarks", "docs")
 SUFFIXES = (".py", ".md", ".toml")
 SKIP_DIRS = {"__pycache__", "baselines"}
+BENCHMARKS = ROOT / "benchmarks" / "README.md"
+BENCH_QUOTE_RE = re.compile(r'benchmarks/README\.md`{0,2},?\s*\(?"([^"]{1,120})"')
 
 WINDOW = 40
 BOOK_MARKERS = (
@@ -273,6 +280,24 @@ def test_no_reference_to_material_outside_the_repository():
     assert not problems, (
         "references to files outside the repository (point them to docs/):\n"
         + "\n".join(problems))
+
+
+def test_every_quoted_benchmarks_title_resolves():
+    lines = _text(BENCHMARKS).splitlines()
+    starts = [line.lstrip("#").strip() if line.startswith("#") else line.removeprefix("**")
+              for line in lines]
+    files = project_files() + [p for d in ("tamaas_adapter", "contactmechanics_adapter")
+                               for p in sorted((ROOT / d).rglob("*.py"))]
+    quotes, problems = 0, []
+    for path in files:
+        text = _text(path)
+        for m in BENCH_QUOTE_RE.finditer(text):
+            title = re.sub(r"\s*\n\s*(?:#:?\s*)?", " ", m.group(1)).strip()
+            quotes += 1
+            if not any(start.startswith(title) for start in starts):
+                problems.append(f"{path.relative_to(ROOT)}:{_line(text, m.start())}: {title!r}")
+    assert quotes >= 30 and not problems, (
+        f"{quotes} quote(s); titles not in benchmarks/README.md:\n" + "\n".join(problems))
 
 
 def test_the_reference_rules_on_examples():

@@ -66,4 +66,5 @@ def write_vtu(path: str | Path, mesh: meshio.Mesh) -> Path:
 
 
 def read_vtu(path: str | Path) -> meshio.Mesh:
+    """The mesh :func:`write_vtu` wrote to ``path``."""
     return meshio.read(path, file_format="vtu")
