@@ -12,10 +12,11 @@ import time
 import numpy as np
 
 from cases.model import Case, Fretting
-from cases.result import StepResult
+from cases.result import CYCLE_COLUMNS, LOOP_COLUMNS, StepResult, gross_slip, table_of
 
 from . import fields, wear
 from . import fretting as fr
+from .mindlin import fretting_regime
 
 
 def imposed_cycle(amplitude: float, steps_per_cycle: int) -> np.ndarray:
@@ -129,12 +130,12 @@ def fretting_steps(case: Case) -> tuple[list[StepResult], dict]:
     )
     scalars["wall_s"] = time.perf_counter() - t0
     cyc = hist[q + 1:]
-    loops = {"cycle": np.ones(cyc.size), "displacement": cyc,
-             "Qx": -Q_md[q + 1:] * d[0], "Qy": -Q_md[q + 1:] * d[1]}
-    cycles = {"cycle": np.array([1.0]), "energy": np.array([W_trap]),
-              "energy_exact": np.array([W_exact]), "min_stick_area": np.array([stick]),
-              "gross_slip": np.array([1.0 if A >= ref.delta_star else 0.0]),
-              "w_max": np.array([w_max])}
+    loops = table_of(LOOP_COLUMNS, {"cycle": np.ones(cyc.size), "displacement": cyc,
+                                    "Qx": -Q_md[q + 1:] * d[0], "Qy": -Q_md[q + 1:] * d[1]})
+    cycles = table_of(CYCLE_COLUMNS, {
+        "cycle": 1.0, "energy": W_trap, "energy_exact": W_exact, "min_stick_area": stick,
+        "gross_slip": gross_slip(fretting_regime(A, ref.delta_star)), "w_max": w_max},
+        extra=("energy_exact",))
     step = StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(), surface=surface,
                       planes=planes)
     return [step], {"loops": loops, "cycles": cycles}

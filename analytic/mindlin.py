@@ -37,6 +37,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from cases.result import GROSS, PARTIAL
+
 
 def stick_radius(a: float, Q: float, mu: float, P: float) -> float:
     """c = a (1 - |Q|/μP)^(1/3) (Johnson 1985 §7.2); 0 at or beyond gross slip."""
@@ -81,8 +83,9 @@ def gross_slip_shift_from_approach(delta_n: float, mu: float, E_star: float, G_a
 
 
 def fretting_regime(amplitude: float, delta_star: float) -> str:
-    """'partial' if the shift amplitude stays below δ*, else 'gross' (slip)."""
-    return "partial" if abs(amplitude) < delta_star else "gross"
+    """:data:`cases.result.PARTIAL` if the shift amplitude stays below δ*, else
+    :data:`cases.result.GROSS` (slip)."""
+    return PARTIAL if abs(amplitude) < delta_star else GROSS
 
 
 def loop_partial_slip(amplitude: float, mu: float, P: float, delta_star: float,

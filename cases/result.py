@@ -26,6 +26,7 @@ from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -52,6 +53,19 @@ LOOP_COLUMNS = ("cycle", "displacement", "Qx", "Qy")
 #: load for its tractions, stresses and wear to matter; P itself only decays geometrically
 #: under implicit wear, and reaches 0 only when the contact is worn through)
 LOAD_LOST_FRACTION = 0.01
+
+
+def table_of(columns: tuple[str, ...], values: Mapping[str, object],
+             extra: tuple[str, ...] = ()) -> dict[str, np.ndarray]:
+    """A run's table (``cycles``: :data:`CYCLE_COLUMNS`, ``loops``: :data:`LOOP_COLUMNS`)
+    from ``values`` (column -> values, in their order): each column one of ``columns`` or
+    of the solver's own ``extra`` ones, else ValueError naming it (a misspelt column
+    would be a column no comparison reads)."""
+    unknown = [c for c in values if c not in columns and c not in extra]
+    if unknown:
+        raise ValueError(f"table column(s) {', '.join(unknown)}: not among "
+                         f"{', '.join(columns)} nor the solver's own {', '.join(extra)}")
+    return {c: np.atleast_1d(np.asarray(v, dtype=float)) for c, v in values.items()}
 
 
 def von_mises(sxx, syy, szz, sxy, sxz, syz):
@@ -156,6 +170,84 @@ class RunEvent:
     cycle: float
     cycle_resolution: float
     detail: str = ""
+
+#: the slip regimes of a fretting cycle (:func:`cycle_regime`)
+GROSS, PARTIAL = "gross", "partial"
+
+
+def cycle_regime(stick: list[float], contact: list[float]) -> str | None:
+    """The slip regime of a fretting cycle from the stick and the contact (areas, cells or
+    nodes) at its tangential extremes ±A: :data:`GROSS` when at either extreme nothing
+    sticks (every point in contact is on the friction limit, Eq. 13: the whole contact
+    slid), :data:`PARTIAL` when something sticks at both, None when an extreme has no
+    contact."""
+    if not contact or min(contact) <= 0:
+        return None
+    return GROSS if min(stick) <= 0 else PARTIAL
+
+
+def gross_slip(regime: str | None) -> float:
+    """The ``gross_slip`` column of the ``cycles`` table (:data:`CYCLE_COLUMNS`)."""
+    return math.nan if regime is None else float(regime == GROSS)
+
+
+class RegimeEvents:
+    """The regime events of a fretting run (docs/cases.md, case 6), one simulated cycle
+    at a time, the same rules for every solver: ``gross_to_partial_slip`` /
+    ``partial_to_gross_slip`` when the regime of a cycle (:func:`cycle_regime`) changes,
+    the first cycle compared with the initial loading 0 -> +A; under a held approach
+    ``load_lost`` (the least P of a cycle below :data:`LOAD_LOST_FRACTION` of P0, the
+    load after the initial loading) and ``contact_worn_through`` (a step with nothing in
+    contact), each once.
+
+    Simulated cycle n stands for the real cycles (n - 1) J + 1 .. n J (J the cycle jump,
+    the last one cut at ``total``): an event seen in it is recorded at cycle min(n J,
+    total) with ``cycle_resolution`` J, i.e. it happened after cycle (n - 1) J and at or
+    before n J.  ``nothing`` says what "nothing in contact" is for the solver ("no
+    contact cell", "no node in contact")."""
+
+    def __init__(self, jump: float, total: float, P0: float, regime: str | None,
+                 stick: float, held_approach: bool, nothing: str):
+        self.jump, self.total, self.P0, self.held = jump, total, P0, held_approach
+        self.regime, self.stick, self.nothing = regime, stick, nothing
+        self.last = (0.0, P0)  # (cycle, least P) of the last cycle with contact
+        self.events: list[RunEvent] = []
+
+    def cycle(self, n: int) -> float:
+        """The real cycle count at the end of simulated cycle n."""
+        return float(min(n * self.jump, self.total))
+
+    def observe(self, n: int, regime: str | None, stick: float, P_min: float,
+                contact_min: float) -> None:
+        """Record the events of simulated cycle n: its regime, its least stick area at
+        the extremes [mm²], its least P [N] and least contact over its steps."""
+        at, before = self.cycle(n), self.cycle(n - 1)
+        if regime is not None:  # without contact at an extreme, no regime
+            if self.regime is not None and regime != self.regime:
+                self._add(f"{self.regime}_to_{regime}_slip", at, before,
+                          f"least stick area at the extremes ±A {self.stick:.4g} mm² at "
+                          f"cycle {before:g} -> {stick:.4g} mm² at cycle {at:g}")
+            self.regime, self.stick = regime, stick
+        if self.held:
+            self._load(P_min, contact_min, at, before)
+        if contact_min > 0:
+            self.last = (at, P_min)
+
+    def _add(self, event: str, at: float, before: float, detail: str) -> None:
+        self.events.append(RunEvent(event, at, at - before, detail))
+
+    def _load(self, P_min: float, contact_min: float, at: float, before: float) -> None:
+        done = {e.event for e in self.events}
+        if "load_lost" not in done and P_min < LOAD_LOST_FRACTION * self.P0:
+            self._add("load_lost", at, before,
+                      f"P = {P_min:.4g} N < {LOAD_LOST_FRACTION:.0%} of P0 = "
+                      f"{self.P0:.4g} N (least P of the cycle; P0 after the initial "
+                      "loading)")
+        if "contact_worn_through" not in done and contact_min <= 0:
+            self._add("contact_worn_through", at, before,
+                      f"{self.nothing}, P = 0 (least P {self.last[1]:.4g} N at cycle "
+                      f"{self.last[0]:g}, the last with contact)")
+
 
 
 @dataclass
@@ -274,3 +366,26 @@ def load_step(path: str | Path) -> StepResult:
             scalars=json.loads(str(data["scalars"])), x=data["x"], y=data["y"],
             surface=surface, planes=planes,
         )
+
+
+def write_vtu(path: str | Path, mesh: Any) -> Path:
+    """Write the meshio mesh ``mesh`` to ``path`` (.vtu, binary, written atomically, so a
+    reader never sees half a file; :func:`atomic_path`); return the path.  The one writer
+    of every ``.vtu`` file of a run: the FEM's meshes and the grid solvers' steps."""
+    import meshio
+
+    path = Path(path)
+    if path.suffix != ".vtu":
+        raise ValueError(f"{path}: expected a .vtu file name")
+    if not isinstance(mesh, meshio.Mesh):
+        raise TypeError(f"{path}: a {type(mesh).__name__}, not a meshio.Mesh")
+    with atomic_path(path) as tmp:
+        meshio.write(tmp, mesh, file_format="vtu", binary=True)
+    return path
+
+
+def read_vtu(path: str | Path) -> Any:
+    """The meshio mesh :func:`write_vtu` wrote to ``path``."""
+    import meshio
+
+    return meshio.read(path, file_format="vtu")

@@ -22,8 +22,9 @@ the real cycle count at its end, the energy ∮ Q·d dδ by the trapezoidal rule
 steps, the least stick area, gross slip 1 / partial 0 / NaN without contact at an
 extreme ±A, w_max, the stick areas at −A and +A, the least P and contact area).
 Output steps: ``step = n`` for the simulated cycle n that ends at an output cycle
-(``round(c / J)``), and the last.  Regime events (:class:`Events`): gross ↔ partial
-slip, and under a held approach the load lost and the contact worn through.
+(``round(c / J)``), and the last.  Regime events (:class:`cases.result.RegimeEvents`,
+the rules every solver shares): gross ↔ partial slip, and under a held approach the load
+lost and the contact worn through.
 """
 
 from __future__ import annotations
@@ -34,7 +35,14 @@ from dataclasses import replace
 
 import numpy as np
 
-from cases.result import CYCLE_COLUMNS, LOAD_LOST_FRACTION, LOOP_COLUMNS, STICK, RunEvent
+from cases.result import (
+    CYCLE_COLUMNS,
+    LOOP_COLUMNS,
+    STICK,
+    RegimeEvents,
+    cycle_regime,
+    gross_slip,
+)
 from cases.steps import fretting_outputs
 
 from .contact.control import Control, Solution
@@ -66,8 +74,8 @@ def fretting_control(run: Run, shift: float) -> Control:
 
 def fretting_step(run: Run, shift: float, J: float) -> tuple[Solution, Evaluation, np.ndarray]:
     """One step of a cycle (module doc): predictor, corrector with the wear of the
-    predicted slip, wear added, state committed.  Returns the solution, the probe
-    evaluation and the slip of the step at the probes."""
+    predicted slip, wear added, state committed.  Returns the solution, the sample
+    evaluation and the slip of the step at the samples."""
     m = run.model
     case = m.case
     ctrl = fretting_control(run, shift)
@@ -86,7 +94,7 @@ def fretting_step(run: Run, shift: float, J: float) -> tuple[Solution, Evaluatio
         sol, pev = solve_increment(run, replace(ctrl, delta=run.delta, D=run.D.copy()),
                                    cw=J * (s_a + s_b))
         add_wear(run, J * s_a * sol.ev.pn, J * s_b * sol.ev.pn)
-    slip = pev.gt - run.probes.gt_old
+    slip = pev.gt - run.samples.gt_old
     commit(run, sol, pev)
     return sol, pev, slip
 
@@ -129,8 +137,9 @@ def fretting_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
             sol, pev, _ = fretting_step(run, float(u), 0.0)
             bar.update()
         P0, _, _, contact0, stick0 = resultants(run, sol.ev)
-        watch = Events(fr.jump, fr.cycles, P0, _regime(stick0, contact0),
-                       held_approach=case.load.P is None)
+        watch = RegimeEvents(fr.jump, fr.cycles, P0, cycle_regime([stick0], [contact0]),
+                             stick0, held_approach=case.load.P is None,
+                             nothing="no node in contact")
         Q_prev = tangential_load(run, sol.ev.t)
         for n in range(1, n_sim + 1):
             energy, u_prev = 0.0, fr.amplitude
@@ -151,63 +160,15 @@ def fretting_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
                 loops.append((min(n * J, fr.cycles), u, Qx, Qy))
                 bar.update()
             w_max = float((run.nodes.wear_a + run.nodes.wear_b).max())
-            gross = _gross(stick_ext, contact_ext)
-            cycles.append((min(n * J, fr.cycles), abs(energy), min_stick, gross,
+            regime = cycle_regime(stick_ext, contact_ext)
+            cycles.append((min(n * J, fr.cycles), abs(energy), min_stick, gross_slip(regime),
                            w_max, stick_ext[0], stick_ext[-1], P_min, contact_min))
-            watch.observe(n, gross, min(stick_ext), P_min, contact_min)
+            watch.observe(n, regime, min(stick_ext), P_min, contact_min)
             if n in out_sim:
-                yield OutputState(step=n, sol=sol, probe_ev=pev, slip=slip, iterations=iters,
+                yield OutputState(step=n, sol=sol, sample_ev=pev, slip=slip, iterations=iters,
                                   cycle=float(out_sim[n]),
                                   tables=_tables(loops, cycles), events=list(watch.events))
                 iters = 0
-
-
-def _regime(stick: float, contact: float) -> float:
-    """1 gross slip (no node sticks), 0 partial slip, NaN without contact."""
-    return math.nan if contact <= 0.0 else float(stick <= 0.0)
-
-
-class Events:
-    """The regime events of a fretting run, one simulated cycle n at a time, recorded at
-    the real cycle min(nJ, cycles) with resolution J (docs: reports/README.md, events):
-    ``gross_to_partial_slip`` / ``partial_to_gross_slip`` when the regime at the
-    tangential extremes changes (the first cycle against the initial loading), and
-    under a held approach ``load_lost`` (the least P of a cycle below
-    :data:`cases.result.LOAD_LOST_FRACTION` of P0, the load after the initial loading)
-    and ``contact_worn_through`` (a step without a node in contact), each once."""
-
-    def __init__(self, jump: float, total: float, P0: float, regime: float,
-                 held_approach: bool):
-        self.jump, self.total, self.P0, self.held = jump, total, P0, held_approach
-        self.regime, self.stick = regime, math.nan
-        self.events: list[RunEvent] = []
-
-    def observe(self, n: int, gross: float, stick: float, P_min: float,
-                contact_min: float) -> None:
-        at, before = min(n * self.jump, self.total), min((n - 1) * self.jump, self.total)
-        names = {e.event for e in self.events}
-        if not math.isnan(gross):
-            if not math.isnan(self.regime) and gross != self.regime:
-                old, new = ("gross", "partial") if self.regime else ("partial", "gross")
-                self.events.append(RunEvent(
-                    f"{old}_to_{new}_slip", at, at - before,
-                    f"least stick area at the extremes ±A {stick:.4g} mm² at cycle {at:g}"))
-            self.regime = gross
-        if self.held and "load_lost" not in names and P_min < LOAD_LOST_FRACTION * self.P0:
-            self.events.append(RunEvent(
-                "load_lost", at, at - before,
-                f"P = {P_min:.4g} N < {LOAD_LOST_FRACTION:.0%} of P0 = {self.P0:.4g} N"))
-        if self.held and "contact_worn_through" not in names and contact_min <= 0.0:
-            self.events.append(RunEvent("contact_worn_through", at, at - before,
-                                        "no node in contact, P = 0"))
-
-
-def _gross(stick: list[float], contact: list[float]) -> float:
-    """1 when at either extreme ±A no node sticks (the whole contact slid), 0 when
-    nodes stick at both, NaN when an extreme has no contact."""
-    if not contact or min(contact) <= 0.0:
-        return math.nan
-    return float(min(stick) <= 0.0)
 
 
 def _tables(loops: list[tuple], cycles: list[tuple]) -> dict[str, dict[str, np.ndarray]]:

@@ -68,7 +68,7 @@ def solve_increment(run: Run, ctrl: Control, cw: float | np.ndarray = 0.0
                     ) -> tuple[Solution, Evaluation]:
     """Solve the contact under ``ctrl`` (wear compliance ``cw``, one value or one per
     node) from the current state, make the solution the run's state and evaluate the
-    probes on it.
+    samples on it.
 
     Raises :class:`~fem_reference.errors.FemError` when the contact reaches the edge of
     the FE contact zone (1.5 elements from r_c).
@@ -94,23 +94,23 @@ def solve_increment(run: Run, ctrl: Control, cw: float | np.ndarray = 0.0
 
 
 def probe_evaluation(run: Run, ev: Evaluation) -> Evaluation:
-    """The state at the probes: gaps from the P2 displacement field, tractions and
-    states from the nodal solution ``ev`` (linear on the facets' sub-triangles; a probe
+    """The state at the samples: gaps from the P2 displacement field, tractions and
+    states from the nodal solution ``ev`` (linear on the facets' sub-triangles; a sample
     sticks where its stick weight, the interpolated stick indicator, is at least 1/2)."""
     m = run.model
-    probe = evaluate(m.law, run.probes, run.u, run.delta, run.D)
+    sample = evaluate(m.law, run.samples, run.u, run.delta, run.D)
     Nsub = run.sampling.Nsub
     pn = Nsub @ ev.pn
     t = Nsub @ ev.t
     stick = (Nsub @ (ev.state == STICK).astype(float)) >= 0.5
     state = np.where(pn > 0.0, np.where(stick, STICK, SLIP), OPEN)
-    return Evaluation(gn=probe.gn, pn=pn, t=t, gt=probe.gt, state=state, T=probe.T,
-                      Tdelta=probe.Tdelta, TD=probe.TD)
+    return Evaluation(gn=sample.gn, pn=pn, t=t, gt=sample.gt, state=state, T=sample.T,
+                      Tdelta=sample.Tdelta, TD=sample.TD)
 
 
-def commit(run: Run, sol: Solution, probe_ev: Evaluation) -> None:
+def commit(run: Run, sol: Solution, sample_ev: Evaluation) -> None:
     """Make the tractions and tangential gaps of a converged solve the friction history."""
-    for pts, ev in ((run.nodes, sol.ev), (run.probes, probe_ev)):
+    for pts, ev in ((run.nodes, sol.ev), (run.samples, sample_ev)):
         pts.t_old = ev.t.copy()
         pts.gt_old = ev.gt.copy()
 
@@ -118,10 +118,10 @@ def commit(run: Run, sol: Solution, probe_ev: Evaluation) -> None:
 def add_wear(run: Run, dw_a: np.ndarray, dw_b: np.ndarray) -> None:
     """Add the wear increments of a step, Δw = p_n ‖Δg‖_i per node, to bodies a and b:
     nodal coefficients in the modified basis (the weighted gap,
-    :mod:`fem_reference.model.nodal_basis`), and at the probes the wear field they define (the
-    field the gap of the probes holds)."""
+    :mod:`fem_reference.model.nodal_basis`), and at the samples the wear field they define (the
+    field the gap of the samples holds)."""
     for pts, inc_a, inc_b in ((run.nodes, dw_a, dw_b),
-                              (run.probes, run.Nmod @ dw_a, run.Nmod @ dw_b)):
+                              (run.samples, run.Nmod @ dw_a, run.Nmod @ dw_b)):
         pts.wear_a = pts.wear_a + inc_a
         pts.wear_b = pts.wear_b + inc_b
 
@@ -135,10 +135,10 @@ def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
     if m.law_mode != "friction":
         sol, pev = solve_increment(run, control(run))
         iters += sol.iterations
-        slip = np.zeros((run.probes.n, 2))
+        slip = np.zeros((run.samples.n, 2))
         if m.law_mode == "sliding":
             slip[:] = slide_direction(case)
-        yield OutputState(step=0, sol=sol, probe_ev=pev, slip=slip, iterations=iters)
+        yield OutputState(step=0, sol=sol, sample_ev=pev, slip=slip, iterations=iters)
         return
     n_tangential = N_TANGENTIAL if mode in ("load", "shift") else 0
     with progress_bar(progress, normal_increments(case) + n_tangential, case) as bar:
@@ -150,7 +150,7 @@ def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
             iters += sol.iterations
             bar.update()
     slip = pev.gt - gt_ref
-    yield OutputState(step=0, sol=sol, probe_ev=pev, slip=slip, iterations=iters)
+    yield OutputState(step=0, sol=sol, sample_ev=pev, slip=slip, iterations=iters)
 
 
 def normal_increments(case: Case) -> int:
@@ -161,7 +161,7 @@ def normal_increments(case: Case) -> int:
 
 def normal_loading(run: Run, bar=None) -> tuple[Solution, Evaluation, int]:
     """The normal load (or approach) in :func:`normal_increments` increments with the
-    friction history committed; the last solution, its probe evaluation and the Newton
+    friction history committed; the last solution, its sample evaluation and the Newton
     iterations of all increments."""
     n_normal = normal_increments(run.model.case)
     if n_normal > 1:  # start the first increment from its own Hertz solution
@@ -193,10 +193,10 @@ def sliding_wear_path(run: Run, progress: bool = False) -> Iterator[OutputState]
             commit(run, sol, pev)
             bar.update()
             if k in wanted:
-                slip = np.zeros((run.probes.n, 2))
+                slip = np.zeros((run.samples.n, 2))
                 if k > 0:
                     slip[:] = dg
-                yield OutputState(step=k, sol=sol, probe_ev=pev, slip=slip,
+                yield OutputState(step=k, sol=sol, sample_ev=pev, slip=slip,
                                   iterations=sol.iterations, s=k * sw.step)
 
 

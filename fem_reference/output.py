@@ -70,7 +70,7 @@ class StepOutput:
 
 @dataclass(frozen=True)
 class Tractions:
-    """Recovered tractions on body a: nodal pressure, and at the probes the pressure and
+    """Recovered tractions on body a: nodal pressure, and at the samples the pressure and
     the tangential tractions in the reported frame (not limited to the contact)."""
 
     pn_nodes: np.ndarray
@@ -89,8 +89,8 @@ def step_output(run: Run, out: OutputState, *, t0: float, vtu: bool = True) -> S
     tractions = recover_tractions(run, ev)
     active = (run.sampling.Nsub @ (ev.pn > 0.0).astype(float))
     zone = contact_zone(run.sampling.layout, run.sampling.mapped, closing_measure(active),
-                        out.probe_ev.state, run.probes.inside)
-    surface = surface_fields(run, out, zone, tractions, probe_gap(run, ua, ub))
+                        out.sample_ev.state, run.samples.inside)
+    surface = surface_fields(run, out, zone, tractions, sample_gap(run, ua, ub))
     tables = line_tables(run, out, zone, tractions)
     u_body, mat = (ua, case.a) if case.stress.body == "a" else (ub, case.b)
     planes, axis = stress_planes(m, run.locator, u_body, mat.nu, mat.E,
@@ -121,8 +121,8 @@ def body_displacements(run: Run, ev: Evaluation
     return run.model.body_displacements(run.G_all.T @ wt, f_y)
 
 
-def probe_gap(run: Run, ua: BodyDisplacement, ub: BodyDisplacement) -> np.ndarray:
-    """The normal gap g_n = h + w_a + w_b − δ + u_n at the probes from the full FE
+def sample_gap(run: Run, ua: BodyDisplacement, ub: BodyDisplacement) -> np.ndarray:
+    """The normal gap g_n = h + w_a + w_b − δ + u_n at the samples from the full FE
     displacements of both bodies (a companion's u_z is odd under the mirror)."""
     nodes = run.model.top.nodes
     Ntop, sy = run.sampling.Ntop, run.sampling.sy
@@ -132,12 +132,12 @@ def probe_gap(run: Run, ua: BodyDisplacement, ub: BodyDisplacement) -> np.ndarra
         return uz if u.anti is None else uz + sy * (Ntop @ u.anti.reshape(-1, 3)[nodes, 2])
 
     uza, uzb = u_z(ua), u_z(ub)
-    pr = run.probes
+    pr = run.samples
     return pr.h + pr.wear_a + pr.wear_b - run.delta + (-uza - uzb)
 
 
 def recover_tractions(run: Run, ev: Evaluation) -> Tractions:
-    """The nodal tractions of ``ev`` and their values at the probes (linear on the
+    """The nodal tractions of ``ev`` and their values at the samples (linear on the
     facets' sub-triangles, :meth:`fem_reference.model.surface.ContactSurface.sub_interpolation`)."""
     Nsub, sampling = run.sampling.Nsub, run.sampling
     # with a companion the y traction is even under the mirror (module doc of .model)
@@ -177,7 +177,7 @@ def surface_fields(run: Run, out: OutputState, zone: ContactZone, tractions: Tra
     pn = np.where(contact, np.maximum(tractions.pn, 0.0), 0.0)
     px = np.where(contact, tractions.px, 0.0)
     py = np.where(contact, tractions.py, 0.0)
-    pr = run.probes
+    pr = run.samples
     fields = {
         "p_n": pn, "p_x": px, "p_y": py, "gap": gap,
         "slip_x": sampling.sx * slip[:, 0], "slip_y": sampling.sy * slip[:, 1],
@@ -196,7 +196,7 @@ def line_tables(run: Run, out: OutputState, zone: ContactZone, tractions: Tracti
         tables[f"{name}/{out.step}"] = {
             "s": layout.line.copy(), "p_n": tractions.pn[sl],
             "p_x": tractions.px[sl], "p_y": tractions.py[sl],
-            "gap": out.probe_ev.gn[sl], "state": zone.state[sl],
+            "gap": out.sample_ev.gn[sl], "state": zone.state[sl],
         }
     return tables
 
@@ -218,7 +218,7 @@ def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tract
     elif m.shape == "half":
         Q = [sym.factor * Q[0], sym.factor * Q[1] if sym.companion else 0.0]
     wear_q = nodes.wear_a + nodes.wear_b
-    wear_probe = run.probes.wear_a + run.probes.wear_b
+    wear_sampled = run.samples.wear_a + run.samples.wear_b
     return {
         "step": out.step, "s": out.s, "cycle": out.cycle,
         "P": sym.factor * float(np.sum(w * ev.pn)),
@@ -226,7 +226,7 @@ def step_scalars(run: Run, out: OutputState, zone: ContactZone, tractions: Tract
         "contact_area": sym.factor * zone.area,
         "a_x": zone.a_x, "a_y": zone.a_y,
         "p_max": float(tractions.pn_nodes.max()),
-        "w_max": float(wear_probe[:run.sampling.layout.ngrid].max()),
+        "w_max": float(wear_sampled[:run.sampling.layout.ngrid].max()),
         "wear_volume": sym.factor * float(np.sum(w * wear_q)),
         "vm_max": vm, "vm_max_x": vm_x, "vm_max_y": vm_y, "vm_max_z": vm_z,
         "stick_area": sym.factor * float(np.sum(w[stick])),

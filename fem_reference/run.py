@@ -1,7 +1,7 @@
 """One FEM run of a case: its set-up on a model, its current state, its output states.
 
 :func:`start_run` builds the contact points (one per surface node of the contact zone,
-with the dual weights of :mod:`fem_reference.model.nodal_basis`, and the output probes of
+with the dual weights of :mod:`fem_reference.model.nodal_basis`, and the output samples of
 :mod:`fem_reference.fields.sampling`) and the stress sampler, and starts from the displacements
 under the Hertz pressure (:func:`hertz_start`).  The load path (:mod:`fem_reference.loading`)
 advances the state and hands over an :class:`OutputState` per output step; the output
@@ -21,7 +21,7 @@ from .contact.control import Solution
 from .contact.kept_factors import KeptFactors
 from .contact.laws import Evaluation, Points
 from .contact.stiffened import StiffenedSolver
-from .fields.sampling import ProbeSampling, probe_layout, probe_sampling
+from .fields.sampling import SampleInterpolation, sample_interpolation, sample_layout
 from .fields.stresses import PointLocator
 from .model.far_field import block_offset, block_offset_t
 from .model.fem_model import FemModel
@@ -31,15 +31,15 @@ from .model.nodal_basis import coefficients, dual_weights, modified_basis
 @dataclass
 class Run:
     """The set-up of a run and its current converged state (``u``, ``delta``, ``D`` and
-    the histories ``lam_n, t_old, gt_old, wear_a, wear_b`` of ``nodes`` and ``probes``)."""
+    the histories ``lam_n, t_old, gt_old, wear_a, wear_b`` of ``nodes`` and ``samples``)."""
 
     model: FemModel
     nodes: Points  # contact points: the surface nodes (modified coefficients, dual weights)
-    probes: Points  # output probes (weights 0)
+    samples: Points  # output samples (weights 0)
     G_all: sp.csr_matrix  # all surface DOFs -> modified coefficients at the nodes
     Binv: sp.csr_matrix  # modified coefficients -> nodal values (forces: Binv W λ per node)
-    Nmod: sp.csr_matrix  # modified coefficients -> field values at the probes (N Bᵀ)
-    sampling: ProbeSampling
+    Nmod: sp.csr_matrix  # modified coefficients -> field values at the samples (N Bᵀ)
+    sampling: SampleInterpolation
     locator: PointLocator  # finds the elements of stress sample points
     u: np.ndarray  # relative surface displacements (condensed DOFs)
     delta: float  # rigid approach δ of the blocks
@@ -54,13 +54,13 @@ class Run:
 @dataclass(frozen=True)
 class OutputState:
     """A converged state the load path reports: output step ``step`` at sliding distance
-    ``s`` or fretting cycle ``cycle``, its solution, the probe evaluation, the slip of
-    the step at the probes, the contact iterations it took and the run's tables so far."""
+    ``s`` or fretting cycle ``cycle``, its solution, the sample evaluation, the slip of
+    the step at the samples, the contact iterations it took and the run's tables so far."""
 
     step: int
     sol: Solution
-    probe_ev: Evaluation
-    slip: np.ndarray  # (nprobes, 2), global frame
+    sample_ev: Evaluation
+    slip: np.ndarray  # (nsamples, 2), global frame
     iterations: int
     s: float = float("nan")
     cycle: float = float("nan")
@@ -69,7 +69,7 @@ class OutputState:
 
 
 def start_run(model: FemModel) -> Run:
-    """Contact points, probes, recovery and the Hertz start of a run on ``model``."""
+    """Contact points, samples, recovery and the Hertz start of a run on ``model``."""
     case, surf = model.case, model.surface
     R = case.R
     B, Binv = modified_basis(surf)
@@ -78,14 +78,14 @@ def start_run(model: FemModel) -> Run:
                    h=coefficients(Binv, (surf.xy**2).sum(axis=1) / (2 * R)),
                    inside=np.ones(surf.nnodes, bool))
     # over the refined zone (the mesh's), whatever part of it is condensed
-    layout = probe_layout(case.grid, model.shape, model.spec.r_ref * model.a_ref, model.h)
-    sampling = probe_sampling(model, layout)
+    layout = sample_layout(case.grid, model.shape, model.spec.r_ref * model.a_ref, model.h)
+    sampling = sample_interpolation(model, layout)
     xy = layout.xy
-    probes = Points(G=surf.operator(sampling.N)[:, model.cidx].tocsr(), w=np.zeros(xy.shape[0]),
+    samples = Points(G=surf.operator(sampling.N)[:, model.cidx].tocsr(), w=np.zeros(xy.shape[0]),
                     xy=xy, h=(xy**2).sum(axis=1) / (2 * R), inside=sampling.found)
     u, delta = hertz_start(model, nodes)
     semismooth = case.fem.contact == "semismooth"
-    return Run(model=model, nodes=nodes, probes=probes, G_all=G_all, Binv=Binv.tocsr(),
+    return Run(model=model, nodes=nodes, samples=samples, G_all=G_all, Binv=Binv.tocsr(),
                Nmod=(sampling.N @ B.T).tocsr(), sampling=sampling,
                locator=PointLocator(model.space),
                u=u, delta=delta, D=np.zeros(2),

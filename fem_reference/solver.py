@@ -3,7 +3,7 @@
 The run is assembled from one module per job:
 
 - :mod:`fem_reference.model.fem_model`: the FE model of the case (mesh, symmetry, condensation);
-- :mod:`fem_reference.run`: the set-up of a run (contact points, probes, recovery) and
+- :mod:`fem_reference.run`: the set-up of a run (contact points, samples, recovery) and
   its state, started from the Hertz solution;
 - :mod:`fem_reference.loading`: the load paths of static cases (normal, then
   tangential loading; one output step ``step = 0``) and sliding wear (output steps

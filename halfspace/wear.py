@@ -15,7 +15,7 @@ fretting the slip is unknown: it is taken from a predictor solve of the step (se
 
 Fretting uses a cycle jump factor J: each simulated cycle stands for J cycles, its wear
 multiplied by J (results must be shown converged in J).  Every simulated cycle is
-watched for regime events (:class:`RegimeWatch`, returned in ``RunResult.events``):
+watched for regime events (:class:`cases.result.RegimeEvents`, in ``RunResult.events``):
 gross -> partial slip and back (stick cells at the tangential extremes ±A), and under
 a held approach the load lost (P < :data:`cases.result.LOAD_LOST_FRACTION` P0) and the
 contact worn through (no contact cell), each with the real cycle at which it was seen,
@@ -36,11 +36,12 @@ from tqdm.auto import tqdm
 from cases.model import Case, Fretting
 from cases.result import (
     CYCLE_COLUMNS,
-    LOAD_LOST_FRACTION,
     LOOP_COLUMNS,
-    RunEvent,
+    RegimeEvents,
     RunResult,
     StepResult,
+    cycle_regime,
+    gross_slip,
 )
 from cases.steps import fretting_outputs, sliding_outputs, sliding_steps
 
@@ -151,7 +152,7 @@ def fretting(case: Case, progress: bool = False,
              on_output: OutputCallback | None = None) -> RunResult:
     """Fretting (case 6): normal approach (or load) held, tangential displacement along x
     0 -> +A, then cycles +A -> -A -> +A; both bodies wear; cycle jump factor J.  The
-    regime of every simulated cycle is watched (:class:`RegimeWatch`)."""
+    regime of every simulated cycle is watched (:class:`cases.result.RegimeEvents`)."""
     t0 = time.perf_counter()
     fr = case.fretting
     J = fr.jump
@@ -165,7 +166,7 @@ def fretting(case: Case, progress: bool = False,
     d = slide_direction(case.load.slide_angle)
     free = np.array([-d[1], d[0]]) if fr.transverse == "free" else None
     first = _initial_loading(case, solver, h0, normal, d, free)
-    watch = RegimeWatch(case, first)
+    watch = regime_events(case, first)
     state = first.state
     path = cycle_path(fr.amplitude, fr.steps_per_cycle)
     loops, cycles = [], []
@@ -187,7 +188,7 @@ def fretting(case: Case, progress: bool = False,
             Q_prev, u_prev = Q, u
             seen.see(sol, extreme=abs(abs(u) - fr.amplitude) <= 1e-12 * fr.amplitude)
             loops.append((min(n * J, fr.cycles), u, sol.Qx, sol.Qy))
-        watch.observe(n, seen)
+        seen.observed_by(watch, n)
         cycles.append(seen.row(min(n * J, fr.cycles), abs(energy), (w_a + w_b).max()))
         if n in out_sim:
             res = step_result(case, sol, stresses, step=n, wear_a=w_a, wear_b=w_b,
@@ -224,24 +225,13 @@ def _shift(u: float, d: np.ndarray, free: np.ndarray | None,
 def _fretting_tables(loops: list[tuple], cycles: list[tuple]) -> dict[str, dict]:
     """The ``loops`` table (:data:`cases.result.LOOP_COLUMNS`, a row per step) and the
     ``cycles`` table (:data:`cases.result.CYCLE_COLUMNS`, a row per simulated cycle;
-    ``gross_slip`` by :func:`regime`)."""
+    ``gross_slip`` by :func:`cases.result.gross_slip`)."""
     loops_a, cyc_a = np.array(loops), np.array(cycles)
     return {"loops": {c: loops_a[:, i] for i, c in enumerate(LOOP_COLUMNS)},
             "cycles": {c: cyc_a[:, i] for i, c in enumerate(CYCLE_COLUMNS)}}
 
 
 # ---------------------------------------------------------------------- regime events
-
-GROSS, PARTIAL = "gross", "partial"
-
-
-def regime(stick_cells: int, contact_cells: int) -> str | None:
-    """The slip regime at a tangential extreme (±A) of a fretting cycle: ``GROSS`` when
-    no contact cell sticks (every cell in contact is on the friction limit, Eq. 13: the
-    whole contact slides), ``PARTIAL`` when some do, None without a contact cell."""
-    if contact_cells == 0:
-        return None
-    return PARTIAL if stick_cells > 0 else GROSS
 
 
 @dataclass
@@ -269,89 +259,33 @@ class CycleObservation:
             self.contact.append(contact)
 
     def regime(self) -> str | None:
-        """The cycle's regime: gross slip if at either extreme no cell sticks (the whole
-        contact slid in the cycle), None if an extreme has no contact (:func:`regime`)."""
-        at = [regime(s, c) for s, c in zip(self.stick, self.contact, strict=True)]
-        if not at or None in at:
-            return None
-        return GROSS if GROSS in at else PARTIAL
+        """The cycle's regime (:func:`cases.result.cycle_regime` of its cells)."""
+        return cycle_regime(self.stick, self.contact)
 
     def extremes(self) -> tuple[float, float]:
         """Stick areas [mm²] at -A and +A."""
         return self.stick[0] * self.dA, self.stick[-1] * self.dA
 
     def row(self, cycle: float, energy: float, w_max: float) -> tuple[float, ...]:
-        """The cycle's row of the ``cycles`` table (:data:`cases.result.CYCLE_COLUMNS`); its
-        ``gross_slip`` is 1 in gross slip, 0 in partial slip, NaN without contact."""
-        now = self.regime()
-        return (cycle, energy, self.min_stick * self.dA,
-                math.nan if now is None else float(now == GROSS), w_max, *self.extremes(),
-                self.P_min, self.contact_min * self.dA)
+        """The cycle's row of the ``cycles`` table (:data:`cases.result.CYCLE_COLUMNS`)."""
+        return (cycle, energy, self.min_stick * self.dA, gross_slip(self.regime()), w_max,
+                *self.extremes(), self.P_min, self.contact_min * self.dA)
+
+    def observed_by(self, events: RegimeEvents, n: int) -> None:
+        """Hand simulated cycle n to the run's :class:`cases.result.RegimeEvents`."""
+        stick = min(self.extremes()) if self.stick else math.nan
+        events.observe(n, self.regime(), stick, self.P_min, self.contact_min)
 
 
-class RegimeWatch:
-    """The regime events of a fretting run (docs/cases.md, case 6), one simulated cycle
-    at a time: ``gross_to_partial_slip`` / ``partial_to_gross_slip`` when the regime at
-    the tangential extremes changes (:meth:`CycleObservation.regime`; the first cycle is
-    compared with the initial loading 0 -> +A), and under a held approach ``load_lost``
-    (P below :data:`cases.result.LOAD_LOST_FRACTION` P0) and ``contact_worn_through`` (no contact
-    cell), each once.
-
-    Simulated cycle n stands for the real cycles (n - 1) J + 1 .. n J (J the cycle jump,
-    the last one cut at ``fretting.cycles``): an event seen in it is recorded at cycle
-    n J with ``cycle_resolution`` J, i.e. it happened after cycle (n - 1) J and at or
-    before n J; the cycle is known to within J."""
-
-    def __init__(self, case: Case, first: StepSolution):
-        fr, g = case.fretting, case.grid
-        self.jump, self.total, self.dA = fr.jump, fr.cycles, g.dx * g.dy
-        self.held_approach = not case.load.load_controlled
-        self.P0 = first.P
-        self.regime = regime(int(np.count_nonzero(first.status == STICK)),
-                             int(np.count_nonzero(first.state.p_n > 0)))
-        self.stick = float(np.count_nonzero(first.status == STICK)) * self.dA
-        self.last = (0.0, first.P)  # (cycle, least P) of the last cycle with contact
-        self.events: list[RunEvent] = []
-
-    def cycle(self, n: int) -> float:
-        """The real cycle count at the end of simulated cycle n."""
-        return float(min(n * self.jump, self.total))
-
-    def observe(self, n: int, seen: CycleObservation) -> None:
-        """Record the events of simulated cycle n."""
-        at, before = self.cycle(n), self.cycle(n - 1)
-        self._regime_change(seen, at, before)
-        if self.held_approach:
-            self._load(seen, at, before)
-        if seen.contact_min > 0:
-            self.last = (at, seen.P_min)
-
-    def _add(self, event: str, at: float, before: float, detail: str) -> None:
-        self.events.append(RunEvent(event, at, at - before, detail))
-
-    def _regime_change(self, seen: CycleObservation, at: float, before: float) -> None:
-        now = seen.regime()
-        if now is None:
-            return  # no contact at an extreme: no regime (contact_worn_through says so)
-        stick = min(seen.extremes())
-        if self.regime is not None and now != self.regime:
-            self._add(f"{self.regime}_to_{now}_slip", at, before,
-                      f"least stick area at the extremes ±A {self.stick:.4g} mm² at "
-                      f"cycle {before:g} -> {stick:.4g} mm² at cycle {at:g}")
-        self.regime, self.stick = now, stick
-
-    def _load(self, seen: CycleObservation, at: float, before: float) -> None:
-        done = {e.event for e in self.events}
-        limit = LOAD_LOST_FRACTION * self.P0
-        if "load_lost" not in done and seen.P_min < limit:
-            self._add("load_lost", at, before,
-                      f"P = {seen.P_min:.4g} N < {LOAD_LOST_FRACTION:.0%} of P0 = "
-                      f"{self.P0:.4g} N (least P of the cycle; P0 after the initial "
-                      "loading)")
-        if "contact_worn_through" not in done and seen.contact_min == 0:
-            self._add("contact_worn_through", at, before,
-                      f"no contact cell, P = 0 (least P {self.last[1]:.4g} N at cycle "
-                      f"{self.last[0]:g}, the last with contact)")
+def regime_events(case: Case, first: StepSolution) -> RegimeEvents:
+    """The regime events of a fretting run (:class:`cases.result.RegimeEvents`) from its
+    initial loading ``first``."""
+    fr, dA = case.fretting, case.grid.dx * case.grid.dy
+    stick = int(np.count_nonzero(first.status == STICK))
+    contact = int(np.count_nonzero(first.state.p_n > 0))
+    return RegimeEvents(fr.jump, fr.cycles, first.P, cycle_regime([stick], [contact]),
+                        stick * dA, held_approach=not case.load.load_controlled,
+                        nothing="no contact cell")
 
 
 def state_Q(state: ContactState, case: Case) -> np.ndarray:

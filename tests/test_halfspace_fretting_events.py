@@ -1,4 +1,4 @@
-"""Regime events of the half-space fretting loop (``halfspace.wear.RegimeWatch``): gross
+"""Regime events of the half-space fretting loop (``cases.result.RegimeEvents``): gross
 -> partial slip and back, the load lost and the contact worn through under a held
 approach, each with the real cycle at which it was seen (to within the cycle jump J);
 ``events.csv`` beside ``summary.csv`` and the report's Events table
@@ -38,7 +38,15 @@ import pytest
 import halfspace.wear as hw
 from analytic import fretting as afr
 from cases.loader import case_path, load_case
-from cases.result import LOAD_LOST_FRACTION, SLIP, STICK
+from cases.result import (
+    GROSS,
+    LOAD_LOST_FRACTION,
+    PARTIAL,
+    SLIP,
+    STICK,
+    RegimeEvents,
+    cycle_regime,
+)
 from reports.cli import main
 from reports.render.pages import report_text
 
@@ -74,14 +82,14 @@ def results(tmp_path_factory) -> Path:
 # ------------------------------------------------------------------ the detector alone
 
 
-def _watch(held_approach: bool, cycles: float) -> hw.RegimeWatch:
+def _watch(held_approach: bool, cycles: float) -> RegimeEvents:
     """A watch on a 500-cycle-jump case whose initial loading is in partial slip."""
     case = SimpleNamespace(fretting=SimpleNamespace(jump=J, cycles=cycles),
                            grid=SimpleNamespace(dx=0.1, dy=0.1),
                            load=SimpleNamespace(load_controlled=not held_approach))
     first = SimpleNamespace(P=100.0, status=np.array([STICK, SLIP]),
                             state=SimpleNamespace(p_n=np.array([1.0, 1.0])))
-    return hw.RegimeWatch(case, first)
+    return hw.regime_events(case, first)
 
 
 def _seen(stick, contact, P) -> hw.CycleObservation:
@@ -90,11 +98,11 @@ def _seen(stick, contact, P) -> hw.CycleObservation:
 
 
 def test_regime_at_the_extremes():
-    assert hw.regime(0, 5) == hw.GROSS and hw.regime(1, 5) == hw.PARTIAL
-    assert hw.regime(0, 0) is None
+    assert cycle_regime([0], [5]) == GROSS and cycle_regime([1], [5]) == PARTIAL
+    assert cycle_regime([0], [0]) is None
     # the whole contact slides at one extreme: the cycle is in gross slip
-    assert _seen([0, 3], [5, 5], 1.0).regime() == hw.GROSS
-    assert _seen([2, 3], [5, 5], 1.0).regime() == hw.PARTIAL
+    assert _seen([0, 3], [5, 5], 1.0).regime() == GROSS
+    assert _seen([2, 3], [5, 5], 1.0).regime() == PARTIAL
     assert _seen([0, 0], [0, 5], 1.0).regime() is None
 
 
@@ -105,7 +113,7 @@ def test_events_once_with_the_real_cycle_and_its_resolution():
                               _seen([0, 0], [5, 5], 0.5),    # P < 1 % of P0 = 100 N
                               _seen([0, 0], [0, 0], 0.0)],   # no contact
                              start=1):
-        watch.observe(n, seen)
+        seen.observed_by(watch, n)
     got = [(e.event, e.cycle, e.cycle_resolution) for e in watch.events]
     assert got == [("partial_to_gross_slip", 1000.0, 500.0), ("load_lost", 1500.0, 500.0),
                    ("contact_worn_through", 1800.0, 300.0)]
@@ -114,8 +122,8 @@ def test_events_once_with_the_real_cycle_and_its_resolution():
 
 def test_no_load_events_under_load_control():
     watch = _watch(held_approach=False, cycles=1000.0)
-    watch.observe(1, _seen([1, 1], [5, 5], 0.5))
-    watch.observe(2, _seen([1, 1], [5, 5], 0.5))
+    _seen([1, 1], [5, 5], 0.5).observed_by(watch, 1)
+    _seen([1, 1], [5, 5], 0.5).observed_by(watch, 2)
     assert watch.events == []
 
 

@@ -51,7 +51,7 @@ class Law:
 @dataclass
 class Points:
     """Contact evaluation points: the surface nodes (dual weights > 0, ``G`` giving the
-    modified coefficients, :mod:`fem_reference.model.nodal_basis`) or probes (weights 0)."""
+    modified coefficients, :mod:`fem_reference.model.nodal_basis`) or samples (weights 0)."""
 
     G: sp.csr_matrix  # (3n, m): condensed DOFs -> [u_x; u_y; u_z]
     w: np.ndarray  # integration weights [mm²]

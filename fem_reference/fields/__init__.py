@@ -1,4 +1,4 @@
-"""What is read off a solved model: the sample points and probes (:mod:`.sampling`), the
+"""What is read off a solved model: the surface sample points (:mod:`.sampling`), the
 contact zone (:mod:`.contact_zone`), stresses recovered from the P2 elements
 (:mod:`.stresses`), the subsurface stress planes (:mod:`.planes`) and the ``.vtu`` files
 (:mod:`.vtu`).

@@ -1,6 +1,6 @@
 """The reported contact region of a step: output states, semi-widths, boundary and area.
 
-A probe counts as closed when more than half of its interpolation weight sits on nodes
+A sample counts as closed when more than half of its interpolation weight sits on nodes
 in contact (:func:`closing_measure`).  The contact boundary r(θ) is the outermost
 closed point along rays from the centre (:func:`ray_extent`); a grid cell is closed
 inside it, and then stick or slip by its state.  The contact area is the area inside
@@ -17,7 +17,7 @@ import numpy as np
 
 from cases.result import OPEN, SLIP, STICK
 
-from .sampling import ProbeLayout
+from .sampling import SampleLayout
 
 
 def contact_states(closing: np.ndarray, state: np.ndarray) -> np.ndarray:
@@ -28,7 +28,7 @@ def contact_states(closing: np.ndarray, state: np.ndarray) -> np.ndarray:
 
 
 def closing_measure(active_weight: np.ndarray) -> np.ndarray:
-    """``1/2 − w``: negative where the active weight ``w`` of a probe (the indicator of
+    """``1/2 − w``: negative where the active weight ``w`` of a sample (the indicator of
     the nodes in contact, interpolated linearly on the sub-triangles) exceeds 1/2.
 
     Each node carries one contact condition, so the discrete contact boundary lies
@@ -97,18 +97,18 @@ def inside_boundary(xy: np.ndarray, theta: np.ndarray, r_edge: np.ndarray,
 class ContactZone:
     """The reported contact region of a step (modelled part of the surface)."""
 
-    state: np.ndarray  # (n,) output state of every probe (int8: OPEN, STICK, SLIP)
+    state: np.ndarray  # (n,) output state of every sample (int8: OPEN, STICK, SLIP)
     r_edge: np.ndarray  # boundary radius r(θ) along each ray
     area: float  # area inside r(θ) in the modelled sector
     a_x: float  # semi-widths along the x and y lines through the centre
     a_y: float
 
 
-def contact_zone(layout: ProbeLayout, mapped: np.ndarray, closing: np.ndarray,
+def contact_zone(layout: SampleLayout, mapped: np.ndarray, closing: np.ndarray,
                  state: np.ndarray, inside: np.ndarray) -> ContactZone:
-    """The contact region from the probes' ``closing`` measure (negative: closed,
-    :func:`closing_measure`) and return-map ``state`` (``mapped``: the probes in the
-    modelled part; ``inside``: probes in the FE contact zone).
+    """The contact region from the samples' ``closing`` measure (negative: closed,
+    :func:`closing_measure`) and return-map ``state`` (``mapped``: the samples in the
+    modelled part; ``inside``: samples in the FE contact zone).
 
     Lines and rays are closed where ``closing < 0``; grid cells inside the boundary r(θ)
     of the rays.

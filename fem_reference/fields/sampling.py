@@ -1,4 +1,4 @@
-"""Where the output is sampled on the contact surface: the probe points and their
+"""Where the output is sampled on the contact surface: the surface sample points and their
 interpolation matrices.
 
 Probes, in this order (global frame, z = 0):
@@ -10,7 +10,7 @@ Probes, in this order (global frame, z = 0):
   a quarter or half sector included), ``nline // 2 + 1`` radii each over ``[0, r_c]``:
   the contact boundary r(θ) of :func:`fem_reference.fields.contact_zone.ray_extent`.
 
-A quarter or half model samples the mirror image of a probe in the modelled part; the
+A quarter or half model samples the mirror image of a point in the modelled part; the
 reflection signs ``sx, sy`` (0 on a mirror plane) turn the components odd under the
 mirror (see :meth:`fem_reference.model.fem_model.Symmetry.map`).
 """
@@ -29,14 +29,14 @@ from ..errors import FemError
 from ..model.fem_model import FemModel
 
 RAYS_PER_QUARTER = 24
-LINE_DIVISIONS = 20.0  # line probes per element size h (at least)
+LINE_DIVISIONS = 20.0  # line samples per element size h (at least)
 
 
 @dataclass(frozen=True)
-class ProbeLayout:
-    """The probe points: grid cell centres, the lines through the centre, the rays."""
+class SampleLayout:
+    """The surface sample points: grid cell centres, the lines through the centre, the rays."""
 
-    xy: np.ndarray  # (n, 2) every probe, global frame
+    xy: np.ndarray  # (n, 2) every sample, global frame
     ngrid: int  # grid cell centres (first)
     line: np.ndarray  # (nline,) abscissae of the lines through the centre
     theta: np.ndarray  # (ntheta,) ray angles
@@ -68,8 +68,8 @@ class ProbeLayout:
         return values[self.rays].reshape(self.theta.size, -1)
 
 
-def probe_layout(grid: Grid, shape: str, r_c: float, h: float) -> ProbeLayout:
-    """The probes of a model of ``shape`` with contact zone radius ``r_c`` and element
+def sample_layout(grid: Grid, shape: str, r_c: float, h: float) -> SampleLayout:
+    """The samples of a model of ``shape`` with contact zone radius ``r_c`` and element
     size ``h`` in it, for the case grid ``grid``."""
     X, Y = np.meshgrid(grid.x, grid.y, indexing="ij")
     grid_xy = np.column_stack([X.ravel(), Y.ravel()])
@@ -83,26 +83,26 @@ def probe_layout(grid: Grid, shape: str, r_c: float, h: float) -> ProbeLayout:
     ray_r = np.linspace(0.0, r_c, nl // 2 + 1)
     rays = ray_r[None, :, None] * np.stack([np.cos(theta), np.sin(theta)], -1)[:, None, :]
     xy = np.vstack([grid_xy, lx, ly, rays.reshape(-1, 2)])
-    return ProbeLayout(xy=xy, ngrid=grid_xy.shape[0], line=line, theta=theta, ray_r=ray_r,
+    return SampleLayout(xy=xy, ngrid=grid_xy.shape[0], line=line, theta=theta, ray_r=ray_r,
                        periodic=shape == "full")
 
 
 @dataclass(frozen=True)
-class ProbeSampling:
-    """Interpolation of the FE surface fields at the probes of ``layout``."""
+class SampleInterpolation:
+    """Interpolation of the FE surface fields at the samples of ``layout``."""
 
-    layout: ProbeLayout
-    mapped: np.ndarray  # (n, 2) the probes mapped into the modelled part
+    layout: SampleLayout
+    mapped: np.ndarray  # (n, 2) the samples mapped into the modelled part
     sx: np.ndarray  # reflection signs of the x and y components (0 on a mirror plane)
     sy: np.ndarray
-    found: np.ndarray  # probes inside the FE contact zone
+    found: np.ndarray  # samples inside the FE contact zone
     N: sp.csr_matrix  # P2 interpolation on the contact zone (n x surface nodes)
     Nsub: sp.csr_matrix  # nodal values: linear on the four sub-triangles of a facet
     Ntop: sp.csr_matrix  # P2 interpolation on the whole top surface of the block
 
 
-def probe_sampling(model: FemModel, layout: ProbeLayout) -> ProbeSampling:
-    """The interpolation matrices of the probes on the model's contact surface and on the
+def sample_interpolation(model: FemModel, layout: SampleLayout) -> SampleInterpolation:
+    """The interpolation matrices of the samples on the model's contact surface and on the
     block's top surface (every grid point must lie on the latter)."""
     surf = model.surface
     mapped, sx, sy = model.sym.map(layout.xy)
@@ -111,5 +111,5 @@ def probe_sampling(model: FemModel, layout: ProbeLayout) -> ProbeSampling:
     if not found_top.all():
         raise FemError("a grid point lies outside the block's top surface")
     Nsub, _ = surf.sub_interpolation(mapped)
-    return ProbeSampling(layout=layout, mapped=mapped, sx=sx, sy=sy, found=found, N=N,
+    return SampleInterpolation(layout=layout, mapped=mapped, sx=sx, sy=sy, found=found, N=N,
                          Nsub=Nsub, Ntop=Ntop)

@@ -9,20 +9,21 @@ nodes from the exact element stresses; ``p_n, p_x, p_y`` (MPa) the nodal tractio
 the contact solve on body a at the contact surface's nodes (zero at the others), the
 values the output's surface fields interpolate linearly on each facet's
 sub-triangles.  A quarter or half model holds the modelled part only (ParaView's
-Reflect filter restores the rest).
+Reflect filter restores the rest).  Written and read by the run's one .vtu writer,
+:func:`cases.result.write_vtu` / :func:`cases.result.read_vtu` (re-exported here).
 """
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import meshio
 import numpy as np
 
-from cases.result import atomic_path, von_mises
+from cases.result import read_vtu, von_mises, write_vtu
 
 from ..model.elasticity import P2Space
 from .stresses import COMPONENTS, nodal_stresses
+
+__all__ = ["add_tractions", "fields_mesh", "read_vtu", "write_vtu"]
 
 _PAIRS = ((0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2))
 
@@ -53,18 +54,3 @@ def add_tractions(mesh: meshio.Mesh, nodes: np.ndarray, p_n: np.ndarray,
         field[nodes] = values
         mesh.point_data[name] = field
     return mesh
-
-
-def write_vtu(path: str | Path, mesh: meshio.Mesh) -> Path:
-    """Write ``mesh`` to ``path`` (.vtu, binary, written atomically); return the path."""
-    path = Path(path)
-    if path.suffix != ".vtu":
-        raise ValueError(f"{path}: expected a .vtu file name")
-    with atomic_path(path) as tmp:
-        meshio.write(tmp, mesh, file_format="vtu", binary=True)
-    return path
-
-
-def read_vtu(path: str | Path) -> meshio.Mesh:
-    """The mesh :func:`write_vtu` wrote to ``path``."""
-    return meshio.read(path, file_format="vtu")

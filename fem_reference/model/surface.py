@@ -1,4 +1,4 @@
-"""The candidate contact zone of the block's top surface: P2 triangles, quadrature, probes.
+"""The candidate contact zone of the block's top surface: P2 triangles, quadrature, samples.
 
 The contact zone is the set of top-surface facets (``Z = 0``) whose centroid lies within
 the radius ``r_c`` of the load axis.  The traces of the P2 field on those facets are P2
@@ -6,7 +6,7 @@ triangles (3 vertex nodes and 3 edge nodes, order v0 v1 v2 e01 e12 e02).  Everyt
 the contact solver needs is linear in the surface nodal values and is expressed by
 sparse interpolation matrices ``N`` (points x surface nodes): at the quadrature points
 (the integrals of the surface functions, :mod:`fem_reference.model.nodal_basis`) and at arbitrary
-probe points (the case grid, lines through the centre), P2 or linear on the four
+surface sample points (the case grid, lines through the centre), P2 or linear on the four
 sub-triangles of a facet.
 """
 
@@ -111,7 +111,7 @@ class ContactSurface:
         self.dof_comp = np.tile(np.asarray(comps), self.nnodes)[keep]
         self.ndofs = self.dofs.size
 
-    # ------------------------------------------------------------------ probes
+    # ------------------------------------------------------------------ samples
 
     def locate(self, xy: np.ndarray, *, k: int = 12) -> tuple[np.ndarray, np.ndarray]:
         """(facet index or -1, barycentric coordinates (n, 3)) of points ``xy`` (n, 2)."""

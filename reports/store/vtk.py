@@ -28,7 +28,7 @@ from pathlib import Path
 import meshio
 import numpy as np
 
-from cases.result import STRESS_COMPONENTS, Plane, StepResult, atomic_path
+from cases.result import STRESS_COMPONENTS, Plane, StepResult, write_vtu
 
 #: plane field names in the ``.vtu`` point data (as in the FEM's); others keep theirs
 PLANE_NAMES = {**{c: c for c in STRESS_COMPONENTS}, "vm": "von_mises"}
@@ -177,11 +177,6 @@ def step_paths(folder: Path, number: int) -> dict[str, Path]:
             for kind in (SURFACE, PLANES)}
 
 
-def _write(path: Path, mesh: meshio.Mesh) -> None:
-    with atomic_path(path) as tmp:
-        meshio.write(tmp, mesh, file_format="vtu", binary=True)
-
-
 def write_step(folder: Path, number: int, step: StepResult, x0: float = 0.0,
                y0: float = 0.0) -> list[str]:
     """Write output step ``number`` (surface, and planes if it has any) into ``folder``
@@ -190,10 +185,10 @@ def write_step(folder: Path, number: int, step: StepResult, x0: float = 0.0,
     if not on_grid(step):
         return []
     paths = step_paths(folder, number)
-    _write(paths[SURFACE], surface_mesh(step))
+    write_vtu(paths[SURFACE], surface_mesh(step))
     written = [paths[SURFACE].name]
     mesh = planes_mesh(step.planes, *crossing(step, x0, y0))
     if mesh is not None:
-        _write(paths[PLANES], mesh)
+        write_vtu(paths[PLANES], mesh)
         written.append(paths[PLANES].name)
     return written

@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 
 from cases.model import Case
-from cases.result import SUMMARY_COLUMNS, RunResult, atomic_path, save_step
+from cases.result import SUMMARY_COLUMNS, RunResult, atomic_path, save_step, write_vtu
 from reports.store import layout, vtk
 
 
@@ -70,9 +70,7 @@ def _write_vtu(root: Path, solver: str, param: str, result: RunResult,
     for stem, mesh in _vtu_items(meshes, numbers):
         if not isinstance(mesh, meshio.Mesh):
             raise RuntimeError(f"meta['vtu'] holds a {type(mesh).__name__}, not a meshio.Mesh")
-        path = layout.unit_dir(root, solver, param) / f"{stem}.vtu"
-        with atomic_path(path) as tmp:
-            meshio.write(tmp, mesh, file_format="vtu", binary=True)
+        path = write_vtu(layout.unit_dir(root, solver, param) / f"{stem}.vtu", mesh)
         written.append(path.name)
     return written
 
