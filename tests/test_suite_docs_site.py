@@ -26,7 +26,7 @@ PACKAGES = ("cases", "halfspace", "fem_reference", "analytic", "external_results
 PAGES = ("index", "getting-started", "case-files", "cases", "verifying-a-solver",
          "external-results", "example-external-results", "commands", "scale-out",
          "formulation", "fem-notes", "overview", "README", "api/index", "benchmarks",
-         "benchmarks-coverage", *(f"api/{p}" for p in PACKAGES))
+         "benchmarks-coverage", "changelog", *(f"api/{p}" for p in PACKAGES))
 #: an equation as Sphinx writes it for MathJax: inline \( \), display \[ \]
 MATH = 'class="math notranslate nohighlight"'
 needs_chromium = pytest.mark.skipif(CHROMIUM is None, reason="headless Chromium is not installed")

@@ -74,19 +74,26 @@ def _imports(source: str) -> list[tuple[str, str]]:
     return out
 
 
-def _readme_code() -> str:
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
-    blocks = re.findall(r"```python\n(.*?)```", text, flags=re.S)
-    return "\n".join(line[4:] for b in blocks for line in b.splitlines()
-                     if line.startswith((">>> ", "... ")))
+def _markdown_code(path: Path) -> str:
+    """The Python of a Markdown file's ``python`` blocks: a doctest block's input lines, a
+    plain block whole."""
+    blocks = re.findall(r"```python\n(.*?)```", path.read_text(encoding="utf-8"), flags=re.S)
+    out = []
+    for b in blocks:
+        lines = b.splitlines()
+        if any(line.startswith(">>> ") for line in lines):
+            lines = [line[4:] for line in lines if line.startswith((">>> ", "... "))]
+        out += lines
+    return "\n".join(out)
 
 
-@pytest.mark.parametrize("where", ["README.md", "docs/examples/solver_plugin",
+@pytest.mark.parametrize("where", ["README.md", "reports/README.md",
+                                   "docs/examples/solver_plugin",
                                    "docs/examples/external_results"])
 def test_the_documentation_imports_public_names_only(where):
     path = ROOT / where
     if path.is_file():
-        sources = [_readme_code()]
+        sources = [_markdown_code(path)]
     else:
         sources = [p.read_text(encoding="utf-8") for p in sorted(path.rglob("*.py"))]
     found = [i for s in sources for i in _imports(s)
