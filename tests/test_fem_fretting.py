@@ -171,27 +171,6 @@ def test_fretting_runs_through_the_fem_by_default_with_its_probe():
     assert plan_case("fretting_orthotropic", ["ic", "analytic"], quick=True).studies == ()
 
 
-def test_regime_events_are_recorded_once_with_their_cycle():
-    """The FEM's event watch on a made-up history (J = 100, 1000 cycles, held approach,
-    P0 = 500 N): partial slip after the loading, gross slip in cycle 3 (at 300 ± 100),
-    load below 1 % of P0 in cycle 5, no contact in cycle 6 (cut at 1000 cycles in the
-    last simulated one)."""
-    from fem_reference.fretting import Events
-
-    watch = Events(100.0, 1000.0, 500.0, 0.0, held_approach=True)
-    history = [(0.0, 0.1, 400.0, 1.0), (0.0, 0.1, 300.0, 1.0), (1.0, 0.0, 200.0, 1.0),
-               (1.0, 0.0, 50.0, 0.5), (1.0, 0.0, 4.0, 0.1), (math.nan, 0.0, 0.0, 0.0),
-               (math.nan, 0.0, 0.0, 0.0)]
-    for n, (gross, stick, P_min, contact) in enumerate(history, start=1):
-        watch.observe(n, gross, stick, P_min, contact)
-    got = [(e.event, e.cycle, e.cycle_resolution) for e in watch.events]
-    assert got == [("partial_to_gross_slip", 300.0, 100.0), ("load_lost", 500.0, 100.0),
-                   ("contact_worn_through", 600.0, 100.0)]
-    load = Events(100.0, 1000.0, 500.0, 1.0, held_approach=False)
-    load.observe(1, 0.0, 0.2, 1.0, 0.0)  # held load: no load events; gross -> partial
-    assert [e.event for e in load.events] == ["gross_to_partial_slip"]
-
-
 def test_semismooth_and_augmented_solves_reach_the_same_worn_partial_slip():
     """The two contact solves (fem.contact) solve the same laws: the semi-smooth Newton
     method on the tractions with no penalty, and the augmented Lagrangian on a penalty.
