@@ -29,7 +29,7 @@ from reports.render.gate import run_gate
 from reports.render.pages import report_text
 from reports.store import study_tables
 from reports.store.readers import read_metrics
-from reports.studies import convergence, gridstudy
+from reports.studies import gridstudy, three_level
 
 C_MANUFACTURED = 0.1  # p_max = p0 (1 + C (h/a0)^2)
 OSCILLATION = {21: 1.0, 13: -1.0, 7: 1.0}  # sign of the σ_VM,max wiggle per cell count
@@ -126,22 +126,22 @@ def test_refinement_through_the_registry():
 def test_classify():
     h = (0.01, 0.015, 0.0225)
     cases = {
-        convergence.CONVERGED: (1.0 + 0.3 * h[0], 1.0 + 0.3 * h[1], 1.0 + 0.3 * h[2]),
-        convergence.OSCILLATING: (1.0, 1.01, 0.99),
-        convergence.NOT_CONVERGED: (1.0, 0.9, 0.85),  # differences grow under refinement
-        convergence.EXACT: (10.2, 10.2 * (1 + 1e-15), 10.2),
+        three_level.CONVERGED: (1.0 + 0.3 * h[0], 1.0 + 0.3 * h[1], 1.0 + 0.3 * h[2]),
+        three_level.OSCILLATING: (1.0, 1.01, 0.99),
+        three_level.NOT_CONVERGED: (1.0, 0.9, 0.85),  # differences grow under refinement
+        three_level.EXACT: (10.2, 10.2 * (1 + 1e-15), 10.2),
     }
     for status, f in cases.items():
-        st = convergence.study(f, h)
-        assert convergence.classify(st)[0] == status, (status, st)
-    assert convergence.classify(convergence.study((0.0, 0.0, 0.0), h))[0] == "exact"
+        st = three_level.study(f, h)
+        assert three_level.classify(st)[0] == status, (status, st)
+    assert three_level.classify(three_level.study((0.0, 0.0, 0.0), h))[0] == "exact"
     # shrinking and monotone, but far too slowly: outside the asymptotic range
-    slow = convergence.study((1.0, 1.1, 1.205), h)
-    assert 0 < slow.p < 0.5 and convergence.classify(slow) == (
-        convergence.NOT_CONVERGED, f"observed order {slow.p:.3g} outside [0.5, 5]: not in "
+    slow = three_level.study((1.0, 1.1, 1.205), h)
+    assert 0 < slow.p < 0.5 and three_level.classify(slow) == (
+        three_level.NOT_CONVERGED, f"observed order {slow.p:.3g} outside [0.5, 5]: not in "
         "the asymptotic range")
-    assert convergence.classify(convergence.study((1.0, math.nan, 1.2), h))[0] == \
-        convergence.NOT_CONVERGED
+    assert three_level.classify(three_level.study((1.0, math.nan, 1.2), h))[0] == \
+        three_level.NOT_CONVERGED
 
 
 # ------------------------------------------------------------------ fakes

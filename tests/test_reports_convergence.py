@@ -6,7 +6,7 @@ import math
 
 import pytest
 
-from reports.studies.convergence import gci, observed_order, richardson, study
+from reports.studies.three_level import gci, observed_order, richardson, study
 
 
 def seq(h, p=2.0, exact=1.0, c=0.3):

@@ -108,7 +108,7 @@ def test_grid_convergence_table_from_the_sweep(report):
     # the fake pressure sampled at cell centres ±h/2 has p_max = 1.02 p0 √(1 − h²/2a0²):
     # the observed order of the three finest grids follows from those values
     from cases.loader import load_case
-    from reports.studies.convergence import study
+    from reports.studies.three_level import study
 
     a0, p0 = load_case("hertz")[0].hertz_scales
     h = [1.6 / n for n in (80, 40, 20)]

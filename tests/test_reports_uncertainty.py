@@ -13,7 +13,7 @@ import pytest
 from reports.compare.verdict import EXTRA_COLUMNS, METRICS_COLUMNS, Uncertainty, decide
 from reports.registry import solvers
 from reports.registry import tolerances as tol
-from reports.studies import convergence, uncertainty
+from reports.studies import three_level, uncertainty
 
 H = (0.01, 0.015, 0.0225)
 
@@ -21,9 +21,9 @@ H = (0.01, 0.015, 0.0225)
 def study_row(solver: str, quantity: str, f: tuple[float, float, float],
               param: str = "", step: int = 0) -> dict:
     """A convergence-table row as reports.studies.gridstudy writes it, from three values."""
-    st = convergence.study(f, H)
-    status, _ = convergence.classify(st)
-    gci = 0.0 if status == convergence.EXACT else st.gci_fine
+    st = three_level.study(f, H)
+    status, _ = three_level.classify(st)
+    gci = 0.0 if status == three_level.EXACT else st.gci_fine
     return {"solver": solver, "param": param, "step": step, "quantity": quantity,
             "h1": H[0], "h2": H[1], "h3": H[2], "f1": f[0], "f2": f[1], "f3": f[2],
             "order": st.p, "f_extrapolated": st.f_ext, "gci_fine": gci, "status": status,

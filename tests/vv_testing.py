@@ -10,7 +10,7 @@ fixtures.
 Convergence: :func:`assert_converges` takes the errors of a quantity on a sequence of
 grids (or, with ``values=``, the quantity itself when no exact value is known) and asserts
 an observed order, a bound on the finest error or on the last change.  Which formula
-gives the order depends on what is known (``reports/studies/convergence.py``):
+gives the order depends on what is known (``reports/studies/three_level.py``):
 
 - **errors against an exact value** e_k = f_k − f_exact: the errors' ratios,
   p = ln(|e_coarse| / |e_fine|) / ln(h_coarse / h_fine), for every consecutive pair.  It
@@ -43,7 +43,7 @@ import numpy as np
 from analytic.hertz import Hertz, hertz, hertz_from_approach
 from cases.loader import BUNDLED, load_case
 from cases.model import Case
-from reports.studies.convergence import observed_order, richardson
+from reports.studies.three_level import observed_order, richardson
 
 
 def load_bundled(name: str, *, quick: bool = False, overrides: dict | None = None,

@@ -1,6 +1,6 @@
 """The tables of a case's grid studies for the report: the run's own studies
 (``convergence.csv`` of ``run --convergence``) and the study a sweep over cell sizes makes
-(observed order and Roache's GCI of p_max and σ_VM,max, :mod:`reports.studies.convergence`), and
+(observed order and Roache's GCI of p_max and σ_VM,max, :mod:`reports.studies.three_level`), and
 its cycle-jump studies (``jump_study.csv`` of ``run --jump-study``)."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ import pandas as pd
 
 from reports.registry import solvers
 from reports.store.results import CaseResults
-from reports.studies import convergence, gridstudy, probe
+from reports.studies import gridstudy, probe, three_level
 from reports.studies.gridstudy import GRID_STUDY
 from reports.studies.jumpstudy import JUMP_STUDY
 
@@ -46,7 +46,7 @@ def convergence_frame(case: CaseResults) -> pd.DataFrame:
             f = tuple(float(v) for v in three[q])
             if not all(math.isfinite(v) for v in f):
                 continue
-            st = convergence.study(f, tuple(float(v) for v in three["h"]))
+            st = three_level.study(f, tuple(float(v) for v in three["h"]))
             rows.append({
                 "solver": solver, "quantity": q,
                 "h1/a0": st.h[0] / a0, "h2/a0": st.h[1] / a0, "h3/a0": st.h[2] / a0,

@@ -15,7 +15,7 @@ import pandas as pd
 from reports.store import layout
 from reports.store.readers import Malformed, read_csv, read_result, read_table
 
-#: statuses of a three-level study (:func:`reports.studies.convergence.classify`)
+#: statuses of a three-level study (:func:`reports.studies.three_level.classify`)
 CONVERGED, OSCILLATING, NOT_CONVERGED, EXACT = "converged", "oscillating", "not converged", \
     "exact"
 STATUSES = (CONVERGED, OSCILLATING, NOT_CONVERGED, EXACT)

@@ -6,11 +6,11 @@ others are its own."""
 
 __all__ = [
     "claims",
-    "convergence",
     "events",
     "gridstudy",
     "jumpstudy",
     "probe",
     "registry",
     "study",
+    "three_level",
 ]

@@ -24,7 +24,7 @@ output step (matched by step number) and every studied scalar (:data:`STUDIED`) 
 holds the three cell sizes and values (finest first), the observed order, the
 Richardson-extrapolated value, Roache's GCI of the finest grid (Fs = 1.25, a relative
 uncertainty of f1) and of the coarser pair, the asymptotic-range ratio and a status
-(:func:`reports.studies.convergence.classify`: ``converged``, ``oscillating``, ``not converged``
+(:func:`reports.studies.three_level.classify`: ``converged``, ``oscillating``, ``not converged``
 or ``exact``) with its reason in ``note``.  ``summary.csv`` gets a last column
 :data:`FLAG_COLUMN` naming the gated quantities of each row whose study is neither
 ``converged`` nor ``exact`` (blank: none, or no study for that solver); ``gate`` prints
@@ -55,7 +55,7 @@ from reports.registry import solvers
 from reports.registry.tolerances import budget
 from reports.store.study_tables import CONVERGED, CONVERGENCE_COLUMNS, EXACT
 from reports.store.write import jsonable
-from reports.studies import convergence, uncertainty
+from reports.studies import three_level, uncertainty
 from reports.studies.study import Check, Levels, Own, StudyRun, StudyTable
 
 #: the smallest refinement ratio between consecutive grids
@@ -133,15 +133,15 @@ def value_of(row: dict[str, Any] | None, q: str) -> float:
 def study_row(solver: str, param: str, step: int, q: str, h: tuple[float, float, float],
               f: tuple[float, float, float], failed: list[str]) -> dict[str, Any]:
     """One row of a three-level study (values ``f`` on sizes ``h``, finest first):
-    order, extrapolation, GCIs and status (:func:`reports.studies.convergence.classify`);
+    order, extrapolation, GCIs and status (:func:`reports.studies.three_level.classify`);
     ``failed`` names levels that did not run."""
-    st = convergence.study(f, h)
-    status, note = convergence.classify(st)
+    st = three_level.study(f, h)
+    status, note = three_level.classify(st)
     if failed:
         note = "; ".join(failed)
     order, f_ext, gci_fine, gci_coarse = st.p, st.f_ext, st.gci_fine, st.gci_coarse
     asymptotic = st.asymptotic
-    if status == convergence.EXACT:
+    if status == three_level.EXACT:
         order, f_ext, gci_fine, gci_coarse = math.nan, f[0], 0.0, 0.0
         asymptotic = math.nan
     elif not st.converging and not st.oscillatory and math.isfinite(order):

@@ -15,7 +15,7 @@ and every studied quantity (:data:`reports.studies.gridstudy.STUDIED`):
   ``f1, f2, f3`` the values at the same real cycle;
 - ``change_halved``: (f(J/2) − f(J)) / |f(J)|, what halving the run's own jump changes;
 - order, Richardson extrapolation, GCIs and status of the three levels
-  (:func:`reports.studies.convergence.classify`, refinement ratio 2);
+  (:func:`reports.studies.three_level.classify`, refinement ratio 2);
 - ``cell_size`` of the run's grid, for budgets in cells.
 
 The run's own results stay those of J.  ``summary.csv`` gets a last column

@@ -48,7 +48,7 @@ import pandas as pd
 
 from cases.model import Case
 from reports.registry import solvers
-from reports.studies import convergence
+from reports.studies import three_level
 
 #: Eça & Hoekstra's factor on the data range of an anomalous (oscillating) study
 RANGE_FACTOR = 3.0
@@ -61,12 +61,12 @@ def solver_uncertainty(row: Any) -> float:
     if row is None:
         return math.nan
     status = row.status
-    if status == convergence.EXACT:
+    if status == three_level.EXACT:
         return 0.0
-    if status == convergence.CONVERGED:
+    if status == three_level.CONVERGED:
         u = float(row.gci_fine)
         return u if math.isfinite(u) and u >= 0 else math.nan
-    if status == convergence.OSCILLATING:
+    if status == three_level.OSCILLATING:
         f = np.array([row.f1, row.f2, row.f3], float)
         if not np.isfinite(f).all() or f[0] == 0:
             return math.nan

@@ -1,4 +1,5 @@
-"""Grid convergence: observed order and Roache's grid-convergence index (GCI).
+"""The mathematics of a three-level study (grid or cycle jump): observed order, Richardson
+extrapolation and Roache's grid-convergence index (GCI).
 
 Three solutions f1 (finest), f2, f3 (coarsest) on grids of representative cell sizes
 h1 < h2 < h3, refinement ratios r21 = h2/h1 and r32 = h3/h2 (Roache 1998; Celik et al.,
