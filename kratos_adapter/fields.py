@@ -1,14 +1,16 @@
 """The Kratos solution on the case's grid and planes, mirrored from the quarter model.
 
 - Surface pressure: the slave face's nodal pressures (the sphere's face, body a)
-  interpolated linearly on its triangles at the cell centres (x, y) of the case grid,
-  each centre taken to the quarter (|x|, |y|) (the frictionless contact is symmetric
-  about both planes); 0 outside the face.
-- Stresses: each tetrahedron's Cauchy stress (constant in a linear tetrahedron), averaged
-  to the nodes weighted by the elements' volumes, and interpolated linearly inside the
-  element that contains each sample point of the planes (xz through y0, yz through x0,
-  the depths ``stress.z`` into the reported body).  Mirroring x -> -x changes the sign of
-  σ_xy and σ_xz, y -> -y that of σ_xy and σ_yz.
+  interpolated linearly on its facets (each quadrilateral split in two triangles) at
+  the cell centres (x, y) of the case grid, each centre taken to the quarter (|x|, |y|)
+  (the frictionless contact is symmetric about both planes); 0 outside the face.
+- Stresses: each element's stresses at its nodes (a hexahedron's Gauss-point values
+  extrapolated to its corners, :func:`kratos_adapter.model.extrapolate`) averaged at
+  every node over the elements that share it, weighted by their volumes, and
+  interpolated linearly inside the element (split in six tetrahedra) that contains each
+  sample point of the planes (xz through y0, yz through x0, the depths ``stress.z``
+  into the reported body).  Mirroring x -> -x changes the sign of σ_xy and σ_xz,
+  y -> -y that of σ_xy and σ_yz.
 """
 
 from __future__ import annotations
@@ -25,10 +27,13 @@ MIRROR = {"sxx": (1, 1), "syy": (1, 1), "szz": (1, 1), "sxy": (-1, -1), "sxz": (
 
 def surface(nodes: np.ndarray, triangles: np.ndarray, values: np.ndarray,
             x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """``values`` at ``nodes`` interpolated linearly on ``triangles`` (their x, y) at the
-    points (x[i], y[j]) taken to the quarter, (nx, ny); 0 outside the triangles."""
+    """``values`` at ``nodes`` interpolated linearly on ``triangles`` (their x, y; a
+    quadrilateral face split in two) at the points (x[i], y[j]) taken to the quarter,
+    (nx, ny); 0 outside the face."""
     import matplotlib.tri as mtri
 
+    if triangles.shape[1] == 4:
+        triangles = np.concatenate([triangles[:, [0, 1, 2]], triangles[:, [0, 2, 3]]])
     used = np.unique(triangles)
     renum = np.full(nodes.shape[0], -1, dtype=np.int64)
     renum[used] = np.arange(used.size)
@@ -39,16 +44,33 @@ def surface(nodes: np.ndarray, triangles: np.ndarray, values: np.ndarray,
     return np.ma.filled(out, 0.0).reshape(X.shape)
 
 
-def nodal_stresses(nodes: np.ndarray, tets: np.ndarray, stress: np.ndarray) -> np.ndarray:
-    """The elements' stresses (m, 6) averaged to the nodes (n, 6), weighted by volume."""
+#: a hexahedron (Kratos' node order) as six tetrahedra around its diagonal 0-6
+HEX_TETS = np.array([[0, 1, 2, 6], [0, 2, 3, 6], [0, 3, 7, 6], [0, 7, 4, 6], [0, 4, 5, 6],
+                     [0, 5, 1, 6]])
+
+
+def as_tets(cells: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(tetrahedra, the cell each comes from): tetrahedra as they are, hexahedra split
+    into :data:`HEX_TETS`."""
+    if cells.shape[1] == 4:
+        return cells, np.arange(cells.shape[0])
+    tets = cells[:, HEX_TETS].reshape(-1, 4)
+    return tets, np.repeat(np.arange(cells.shape[0]), HEX_TETS.shape[0])
+
+
+def nodal_stresses(nodes: np.ndarray, cells: np.ndarray, stress: np.ndarray) -> np.ndarray:
+    """The cells' stresses at their nodes (m, nodes per cell, 6) averaged at each node
+    (n, 6) over the cells that share it, weighted by their volumes."""
+    tets, parent = as_tets(cells)
     p = nodes[tets]
     vol = np.abs(np.einsum("ij,ij->i", np.cross(p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]),
                            p[:, 3] - p[:, 0])) / 6.0
+    vol = np.bincount(parent, weights=vol, minlength=cells.shape[0])
     acc = np.zeros((nodes.shape[0], 6))
     wsum = np.zeros(nodes.shape[0])
-    for k in range(4):
-        np.add.at(acc, tets[:, k], stress * vol[:, None])
-        np.add.at(wsum, tets[:, k], vol)
+    for k in range(cells.shape[1]):
+        np.add.at(acc, cells[:, k], stress[:, k] * vol[:, None])
+        np.add.at(wsum, cells[:, k], vol)
     return acc / np.where(wsum > 0, wsum, 1.0)[:, None]
 
 
@@ -72,13 +94,15 @@ def locate(nodes: np.ndarray, tets: np.ndarray, points: np.ndarray, candidates: 
     return near[rows, best], bary[rows, best]
 
 
-def planes(nodes: np.ndarray, tets: np.ndarray, stress: np.ndarray, *, x: np.ndarray,
+def planes(nodes: np.ndarray, cells: np.ndarray, stress: np.ndarray, *, x: np.ndarray,
            y: np.ndarray, z: np.ndarray, x0: float, y0: float, sign_z: float
            ) -> dict[str, Plane]:
     """The xz plane (at y = ``y0``, along ``x``) and the yz plane (at x = ``x0``, along
     ``y``) at the depths ``z`` into the reported body (global z = ``sign_z`` · depth),
-    with σ_VM, from the element stresses (m, 6) of that body's quarter mesh."""
-    nodal = nodal_stresses(nodes, tets, stress)
+    with σ_VM, from the stresses at the nodes of each cell (m, nodes per cell, 6) of
+    that body's quarter mesh (:func:`nodal_stresses`)."""
+    nodal = nodal_stresses(nodes, cells, stress)
+    tets, _ = as_tets(cells)
     out = {}
     for name, s in (("xz", x), ("yz", y)):
         S, Z = np.meshgrid(s, z, indexing="ij")

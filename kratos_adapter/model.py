@@ -146,14 +146,16 @@ class Model:
             for i, (x, y, z) in zip(ids, body.nodes, strict=True):
                 sub.CreateNewNode(int(i), float(x), float(y), float(z))
             first = mp.NumberOfElements() + 1
-            for k, t in enumerate(body.tets):
-                sub.CreateNewElement("SmallDisplacementElement3D4N", first + k,
+            element = f"SmallDisplacementElement3D{body.cells.shape[1]}N"
+            condition = f"SurfaceCondition3D{body.contact.shape[1]}N"
+            for k, t in enumerate(body.cells):
+                sub.CreateNewElement(element, first + k,
                                      [int(n) for n in t + offset + 1], prop)
             faces = mp.CreateSubModelPart(face)
             faces.AddNodes([int(n) for n in np.unique(body.contact) + offset + 1])
             first = mp.NumberOfConditions() + 1
             for k, t in enumerate(body.contact):
-                faces.CreateNewCondition("SurfaceCondition3D3N", first + k,
+                faces.CreateNewCondition(condition, first + k,
                                          [int(n) for n in t + offset + 1], prop)
         # symmetry planes, the plane's far face held; the sphere's far face is driven
         for body, offset in ((a, self.offset_a), (b, 0)):
@@ -204,13 +206,40 @@ class Model:
         return int(self.mp.ProcessInfo[self.KM.NL_ITERATION_NUMBER])
 
     def stresses(self, body: str) -> np.ndarray:
-        """The Cauchy stress of each element of ``body`` ('a' or 'b'), (m, 6) as
-        (sxx, syy, szz, sxy, sxz, syz) [MPa] (one integration point per tetrahedron)."""
+        """The Cauchy stress of each element of ``body`` ('a' or 'b') at its nodes,
+        (m, nodes per element, 6) as (sxx, syy, szz, sxy, sxz, syz) [MPa]: the values at
+        its 2 x 2 x 2 Gauss points extrapolated trilinearly to its corners (a hexahedron),
+        the one value of a linear tetrahedron at each of its nodes."""
         KM = self.KM
         info = self.mp.ProcessInfo
         part = self.mp.GetSubModelPart("BodyA" if body == "a" else "BodyB")
-        out = np.empty((part.NumberOfElements(), 6))
+        cells = (self.a if body == "a" else self.b).cells
+        offset = self.offset_a if body == "a" else 0
+        out = np.empty((cells.shape[0], cells.shape[1], 6))
+        order = [0, 1, 2, 3, 5, 4]  # Kratos' Voigt order: xx yy zz xy yz xz
         for k, elem in enumerate(part.Elements):
-            s = elem.CalculateOnIntegrationPoints(KM.CAUCHY_STRESS_VECTOR, info)[0]
-            out[k] = (s[0], s[1], s[2], s[3], s[5], s[4])  # Kratos: xx yy zz xy yz xz
+            s = np.array([list(v) for v in
+                          elem.CalculateOnIntegrationPoints(KM.CAUCHY_STRESS_VECTOR, info)])
+            s = s[:, order]
+            if s.shape[0] == 1:
+                out[k] = s[0]
+                continue
+            gp = np.array([list(v) for v in
+                           elem.CalculateOnIntegrationPoints(KM.INTEGRATION_COORDINATES, info)])
+            ids = [n.Id - offset - 1 for n in elem.GetNodes()]
+            out[k] = extrapolate(self.a.nodes if body == "a" else self.b.nodes, ids, gp, s)
         return out
+
+
+def extrapolate(nodes: np.ndarray, ids: list[int], gp: np.ndarray, values: np.ndarray
+                ) -> np.ndarray:
+    """Values at a hexahedron's 2 x 2 x 2 Gauss points ``gp`` extrapolated trilinearly to
+    its corners ``nodes[ids]``: in the element's axes (it is a box up to the sphere's
+    map), a Gauss point sits at ±1/√3 and a corner at ±1, so a corner's weight on the
+    point of signs s is Π (1 + √3 s·c) / 2."""
+    corners = nodes[ids]
+    centre = corners.mean(axis=0)
+    c = np.sign(corners - centre)
+    g = np.sign(gp - centre)
+    w = np.prod((1.0 + np.sqrt(3.0) * c[:, None, :] * g[None, :, :]) / 2.0, axis=-1)
+    return w @ values
