@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import importlib.util
 import math
-from importlib import metadata
 from collections.abc import Callable
+from importlib import metadata
 
 from cases.model import Case
 from cases.result import Cost, RunResult, StepResult
