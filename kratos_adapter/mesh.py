@@ -101,3 +101,10 @@ def hex_bodies(a0: float, R: float, h: float, side: float, height: float
     x, y, z = a.nodes.T
     a.nodes[:, 2] = z + (x**2 + y**2) / (2.0 * R) * (1.0 - z / height)
     return a, b
+
+
+def node_count(a0: float, h: float, side: float) -> int:
+    """The nodes of the two quarter bodies of :func:`hex_bodies` (no mesh built)."""
+    xs = graded(h, HEX_FINE * a0, side)
+    zs = graded(h, HEX_FINE * a0, side, SURFACE * h)
+    return 2 * xs.size**2 * zs.size
