@@ -46,17 +46,19 @@ DISTRIBUTIONS = ("kratosmultiphysics", "kratosstructuralmechanicsapplication",
 #: - p_max 0.23 / 0.15 / 0.006 % (the structured mesh's nodal pressure; the case's own
 #:   p_max tolerance, 1 %, applies on Hertz); P: the load search's tolerance
 #:   (:data:`kratos_adapter.run.LOAD_TOL`, 0.2 %);
-#: - p_n 1.3 / 1.4 / 0.8 % in L2, 1.5 / 1.6 / 0.9 % in the max norm;
+#: - p_n 1.3 / 1.4 / 0.8 % in L2, 1.5 / 1.6 / 0.9 % in the max norm (a frictionless
+#:   steel-on-aluminium contact on a grid of a0/13 cells at a0/6: 2.5 % and 4.8 %, the
+#:   pressure linear between nodes a0/6 apart sampled closer to the edge);
 #: - σ_VM planes 3.7 / 3.7 / 2.8 % in L2 and 19 / 14.5 / 11.5 % in the max norm, the
 #:   largest at the surface under the contact, where σ_VM has its steep minimum and the
 #:   first element layer is h/2 thick (it shrinks with h, order about 1.3); σ_VM,max
-#:   0.33 / 0.56 / 0.40 %;
+#:   0.33 / 0.56 / 0.40 % (the steel-on-aluminium contact: 3.7 %, 12.7 %, 0.62 %);
 #: - lengths: the grid solvers' (a_x 0.68 cells, the contact's equivalent radius 0.59).
 BUDGET = {
     ("P", "rel"): 0.003,
     ("p_max", "rel"): 0.005,
     ("p_n", "l2"): 0.03,
-    ("p_n", "max"): 0.04,
+    ("p_n", "max"): 0.05,
     ("vm_max", "rel"): 0.01,
     ("vm_xz", "l2"): 0.04,
     ("vm_yz", "l2"): 0.04,

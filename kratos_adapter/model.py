@@ -1,18 +1,19 @@
-"""The Kratos model of one frictionless sphere-on-plane contact: two quarter bodies of
-linear tetrahedra (:mod:`kratos_adapter.mesh`), small-displacement elements with Kratos'
-linear elastic law, mortar augmented-Lagrangian frictionless contact
-(``ALMContactFrictionless``, Kratos' ``ALMContactProcess`` with its automatic penalty
-and scale factor), driven by the approach δ of the sphere's far face (the plane's far
-face held) in Kratos' static contact solver, one thread, AMGCL (:data:`LINEAR_SOLVER`).
+"""The Kratos model of one frictionless sphere-on-plane contact: the two quarter bodies
+of :mod:`kratos_adapter.mesh` (trilinear hexahedra; linear tetrahedra would do too),
+small-displacement elements with Kratos' linear elastic law, mortar
+augmented-Lagrangian frictionless contact (``ALMContactFrictionless``, Kratos'
+``ALMContactProcess`` with its automatic penalty and scale factor), driven by the
+approach δ of the sphere's far face (the plane's far face held) in Kratos' static
+contact solver, one thread, AMGCL (:data:`LINEAR_SOLVER`).
 
 The slave face is the sphere's (body a): with the plane's face as slave, the multiplier
 at the nodes on the symmetry planes near the centre came out up to 1.9 p0 (Hertz: 1.0)
-on the bundled Hertz case at h = a0/6, whatever the mesh ratio; with the sphere's, the
-nodal pressures lie within about 0.1 p0 of Hertz's.
+on the bundled Hertz case at h = a0/6 (tetrahedra), whatever the mesh ratio.
 
 Kratos is driven step by step (:class:`Model`): each :meth:`Model.solve` is one load step
-at a new δ from the last converged state, so a secant search for the case's normal load
-(:func:`kratos_adapter.drive.solve_for_load`) costs a few Newton iterations per step.
+at a new δ from the last converged state (the boundary values set on the nodes, not by
+a process with a time interval), so the secant search for the case's normal load
+(:func:`kratos_adapter.run.load_search`) costs a few Newton iterations per step.
 
 Reserved names avoided: a sub-model part named ``Contact`` is Kratos' own.
 """
@@ -30,9 +31,10 @@ import numpy as np
 
 from .mesh import Body
 
-#: the linear solver: AMGCL (Kratos' default iterative solver) to a tight tolerance; Eigen's
-#: sparse LU (the wheel has no PARDISO) took 5 s per Newton iteration at h = a0/6 where
-#: AMGCL takes 0.4 s
+#: the linear solver: AMGCL (Kratos' iterative solver) to a relative 1e-9: Eigen's sparse
+#: LU (the wheel has no PARDISO) took 5.2 s per solve at 18 000 unknowns where AMGCL
+#: took 0.36 s per Newton iteration, and AMGCL to 1e-6 gave a peak pressure of 2 p0
+#: (benchmarks/README.md, "Kratos through the gates")
 LINEAR_SOLVER = """{"solver_type": "amgcl", "tolerance": 1.0e-9, "max_iteration": 1000,
                     "krylov_type": "lgmres", "smoother_type": "ilu0", "verbosity": 0}"""
 #: Kratos' settings (its ``ProjectParameters`` keys); tolerances of the Newton solve
