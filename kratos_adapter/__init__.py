@@ -39,31 +39,38 @@ DISTRIBUTIONS = ("kratosmultiphysics", "kratosstructuralmechanicsapplication",
                  "kratoslinearsolversapplication")
 
 #: (quantity, metric) -> the expected error against the exact solution at the element
-#: size of the bundled cases (a0/6 at the default fem.h), from the grid study of its own
-#: mesh on the bundled Hertz case (a0/4, a0/5, a0/6; benchmarks/README.md, "Kratos
-#: through the gates"), each above the largest error measured there:
+#: size of the bundled cases (a0/6 at the default fem.h), each above the largest error
+#: measured against the closed form (benchmarks/README.md, "Kratos through the gates"):
+#: the grid study of its own mesh on the bundled Hertz case (a0/4, a0/5, a0/6), a
+#: frictionless steel-on-aluminium contact, and four generated normal contacts
+#: (tests/case_generator.py, ν from -0.26 to 0.07):
 #:
 #: - p_max 0.23 / 0.15 / 0.006 % (the structured mesh's nodal pressure; the case's own
 #:   p_max tolerance, 1 %, applies on Hertz); P: the load search's tolerance
 #:   (:data:`kratos_adapter.run.LOAD_TOL`, 0.2 %);
-#: - p_n 1.3 / 1.4 / 0.8 % in L2, 1.5 / 1.6 / 0.9 % in the max norm (a frictionless
-#:   steel-on-aluminium contact on a grid of a0/13 cells at a0/6: 2.5 % and 4.8 %, the
-#:   pressure linear between nodes a0/6 apart sampled closer to the edge);
-#: - σ_VM planes 3.7 / 3.7 / 2.8 % in L2 and 19 / 14.5 / 11.5 % in the max norm, the
-#:   largest at the surface under the contact, where σ_VM has its steep minimum and the
-#:   first element layer is h/2 thick (it shrinks with h, order about 1.3); σ_VM,max
-#:   0.33 / 0.56 / 0.40 % (the steel-on-aluminium contact: 3.7 %, 12.7 %, 0.62 %);
-#: - lengths: the grid solvers' (a_x 0.68 cells, the contact's equivalent radius 0.59).
+#: - p_n 1.3 / 1.4 / 0.8 % in L2, 1.5 / 1.6 / 0.9 % in the max norm; 2.5 % and 4.8 % on
+#:   the steel-on-aluminium contact, whose grid (a0/13 cells) samples the pressure,
+#:   linear between nodes a0/6 apart, closer to the edge;
+#: - σ_VM planes 3.7 / 3.7 / 2.8 % in L2 (3.7 % steel on aluminium, 4.0 % on a
+#:   generated draw) and 19 / 14.5 / 11.5 % in the max norm (12.7 %), the largest at the
+#:   surface under the contact, where σ_VM has its steep minimum and the first element
+#:   layer is h/2 thick (it shrinks with h, order about 1.3); σ_VM,max 0.33 / 0.56 /
+#:   0.40 % (0.62 %; 1.22 % on a generated draw with ν = 0);
+#: - lengths: a_x up to 1.07 cells (the pressure linear from the last active node to the
+#:   first inactive one, h further out), the contact's equivalent radius 0.67 cells.
 BUDGET = {
     ("P", "rel"): 0.003,
     ("p_max", "rel"): 0.005,
     ("p_n", "l2"): 0.03,
     ("p_n", "max"): 0.05,
-    ("vm_max", "rel"): 0.01,
-    ("vm_xz", "l2"): 0.04,
-    ("vm_yz", "l2"): 0.04,
+    ("vm_max", "rel"): 0.015,
+    ("vm_xz", "l2"): 0.05,
+    ("vm_yz", "l2"): 0.05,
     ("vm_xz", "max"): 0.13,
     ("vm_yz", "max"): 0.13,
+    ("a_x", "cells"): 1.25,
+    ("a_y", "cells"): 1.25,
+    ("contact_area", "cells"): 1.25,
 }
 
 

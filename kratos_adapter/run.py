@@ -117,7 +117,7 @@ def run(case: Case, on_output: Callable[[StepResult], None] | None = None) -> Ru
         "elements": body_a.cells.shape[0] + body_b.cells.shape[0],
         "wall_s": time.perf_counter() - t0,
     }
-    state = np.where(p_n > 0.0, SLIP, OPEN).astype(float)
+    state = np.where(p_n > 0.0, SLIP, OPEN).astype(np.int8)
     step = StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(),
                       surface={"p_n": p_n, "p_x": zero, "p_y": zero.copy(), "state": state},
                       planes=planes)
