@@ -138,7 +138,8 @@ def test_the_chain_of_the_issue(tmp_path, capsys):
 @pytest.mark.full
 def test_the_gate_catches_a_wrong_modulus(tmp_path, monkeypatch, capsys):
     """Seeded plugin defect: both bodies given a Young's modulus 10 % high (p0 ∝ E*^(2/3):
-    the peak pressure 6.6 % high, the contact 3 % small)."""
+    the peak pressure 6.6 % high, the contact 3 % small): p_max fails against the closed
+    form and the half-space solver (the case's 1 %)."""
     monkeypatch.setattr(kratos_run, "young", lambda body: 1.1 * body.E)
     out = tmp_path / "res"
     assert main(["run", "hertz", "--quick", "--no-progress", "--solver", SOLVERS,
@@ -146,5 +147,6 @@ def test_the_gate_catches_a_wrong_modulus(tmp_path, monkeypatch, capsys):
     capsys.readouterr()
     assert main(["gate", str(out)]) == 1
     rows = ours(out, "hertz")
-    failed = set(rows.loc[~rows["passed"] & (rows["pair"] == "kratos-analytic"), "quantity"])
-    assert {"p_max", "p_n"} <= failed, failed
+    failed = rows.loc[~rows["passed"]]
+    for pair in ("kratos-analytic", "kratos-ic"):
+        assert "p_max" in set(failed.loc[failed["pair"] == pair, "quantity"]), failed
