@@ -4,8 +4,8 @@ than ``fem_reference``, verified through the suite's own comparisons and gates
 (reports/README.md, "Solver plugins"; issue 60).
 
 ``kratos``: frictionless normal contact of the case's sphere on its plane, both bodies
-meshed by gmsh as quarter models of linear tetrahedra (:mod:`kratos_adapter.mesh`),
-solved by Kratos' augmented-Lagrangian mortar contact under the case's normal load
+quarter models of structured trilinear hexahedra (:mod:`kratos_adapter.mesh`), solved
+by Kratos' augmented-Lagrangian mortar contact under the case's normal load
 (:mod:`kratos_adapter.model`, :mod:`kratos_adapter.run`); the pressure on the case grid
 and the stresses on its planes interpolated in the elements and mirrored to the full
 grid (:mod:`kratos_adapter.fields`).  What it declines and why:
@@ -13,7 +13,7 @@ grid (:mod:`kratos_adapter.fields`).  What it declines and why:
 mesh (:func:`budget`).
 
 It shares no code with ``fem_reference`` or ``halfspace`` (tests/test_suite_architecture.py):
-only the case model, the result container and gmsh.  It runs only when named
+only the case model, the result container and the registry's record.  It runs only when named
 (``--solver kratos,fem,ic,analytic``); without Kratos installed the record is not offered
 (nothing changes).  Kratos runs on one thread.
 """
@@ -93,9 +93,10 @@ def cell(case: Case) -> float:
 
 
 def reach(case: Case) -> float:
-    """The stress reach [mm]: the diameter bound of gmsh's elements at size h (2.75 h, as
-    for the FEM reference's mesher, the same sizing) — a sample's stress is interpolated
-    from its element's nodes."""
+    """The stress reach [mm], the planes' edge band: 2.75 h, the bound the FEM reference
+    takes for its elements (this mesh's element diagonal is √3 h; a sample's stress is
+    interpolated from its element's nodes, each an average over the elements around
+    it).  Chosen, not measured: the budget's plane errors were measured with it."""
     return 2.75 * cell(case)
 
 

@@ -2,11 +2,12 @@
 the fields on the case's grid and planes, the scalars of the other solvers.
 
 The load: Kratos drives the approach δ of the far faces; the quarter's load P/4 is the
-reaction of the plane's far face.  Starting from Hertz's δ = a0²/R, each step moves δ by
-the secant of log P against log δ (the first by Hertz's P ∝ δ^(3/2)), from the last
-converged state, until P is within :data:`LOAD_TOL` of the case's load (at most
-:data:`MAX_STEPS` steps).  The finite bodies (side and height :data:`SIDE` a0) are
-stiffer than half-spaces: the approach that carries P is about 4 % below Hertz's.
+reaction of the plane's far face.  Starting from :data:`APPROACH` times Hertz's
+δ = a0²/R, each step moves δ by the secant of log P against log δ (the first by Hertz's
+P ∝ δ^(3/2)), from the last converged state, until P is within :data:`LOAD_TOL` of the
+case's load (at most :data:`MAX_STEPS` steps).  The finite bodies (side and height
+:data:`SIDE` a0) are stiffer than half-spaces: the approach that carries P is about 2 %
+below Hertz's.
 """
 
 from __future__ import annotations
@@ -27,14 +28,14 @@ from .model import Material, Model
 #: the bodies' side and height, in a0 (the FEM reference's block is 20 a0 too, but the
 #: two share no code: this is the same choice of domain, measured separately)
 SIDE = 20.0
-#: the first approach, over Hertz's a0²/R: the finite bodies' (measured 0.977 on the
-#: bundled Hertz case at h = a0/6, hexahedra)
+#: the first approach, over Hertz's a0²/R: the finite bodies' (measured 0.977–0.98 on
+#: the bundled Hertz case at h = a0/4 to a0/6)
 APPROACH = 0.9795
 #: relative tolerance of the normal load, and the most load steps to reach it
 LOAD_TOL = 2e-3
 MAX_STEPS = 8
 #: the element size near the contact over the FEM's ``fem.h`` (a0/6 at its default a0/8):
-#: linear tetrahedra, h from the case so that a grid study refines both FEMs alike
+#: trilinear hexahedra, h from the case so that a grid study refines both FEMs alike
 H_FACTOR = 4.0 / 3.0
 
 
