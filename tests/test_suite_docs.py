@@ -286,7 +286,8 @@ def test_every_quoted_benchmarks_title_resolves():
     lines = _text(BENCHMARKS).splitlines()
     starts = [line.lstrip("#").strip() if line.startswith("#") else line.removeprefix("**")
               for line in lines]
-    files = project_files() + [p for d in ("tamaas_adapter", "contactmechanics_adapter")
+    files = project_files() + [p for d in ("tamaas_adapter", "contactmechanics_adapter",
+                                           "kratos_adapter")
                                for p in sorted((ROOT / d).rglob("*.py"))]
     quotes, problems = 0, []
     for path in files:
