@@ -20,14 +20,11 @@ Reserved names avoided: a sub-model part named ``Contact`` is Kratos' own.
 
 from __future__ import annotations
 
-import contextlib
-import os
-import sys
-import tempfile
-from collections.abc import Iterator
 from dataclasses import dataclass
 
 import numpy as np
+
+from reports.registry.plugins import silenced
 
 from .mesh import Body
 
@@ -71,24 +68,6 @@ SETTINGS = """{
 }"""
 
 
-@contextlib.contextmanager
-def quiet() -> Iterator[None]:
-    """Kratos writes its banner and logs to file descriptors 1 and 2: kept out of the
-    run's output."""
-    sys.stdout.flush()
-    sys.stderr.flush()
-    saved = [os.dup(fd) for fd in (1, 2)]
-    with tempfile.TemporaryFile() as sink:
-        for fd in (1, 2):
-            os.dup2(sink.fileno(), fd)
-        try:
-            yield
-        finally:
-            for fd, old in zip((1, 2), saved, strict=True):
-                os.dup2(old, fd)
-                os.close(old)
-
-
 def threads() -> None:
     """One thread for Kratos (its OpenMP loops) and its linear solver."""
     import KratosMultiphysics as KM
@@ -106,7 +85,7 @@ class Model:
     """A Kratos analysis of the two bodies, advanced one load step per :meth:`solve`."""
 
     def __init__(self, a: Body, b: Body, mat_a: Material, mat_b: Material):
-        with quiet():
+        with silenced():
             import KratosMultiphysics as KM
             import KratosMultiphysics.ContactStructuralMechanicsApplication  # noqa: F401
             import KratosMultiphysics.LinearSolversApplication  # noqa: F401
@@ -173,7 +152,7 @@ class Model:
         Kratos' Newton solve converged."""
         KM = self.KM
         stage = self.stage
-        with quiet():
+        with silenced():
             stage.time = stage._AdvanceTime()
             for node in self.driven:
                 node.Fix(KM.DISPLACEMENT_Z)

@@ -18,41 +18,20 @@ tractions), in the common result container.
 
 from __future__ import annotations
 
-import contextlib
 import math
-import os
-import sys
-import tempfile
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 
 import numpy as np
 
 from cases.model import Case
 from cases.result import RunResult, StepResult, semi_widths, vm_max_location
+from reports.registry.plugins import silenced
 
 from . import volume
 
 PKT_ITERATIONS = 1000
 PKT_NU = 0.5
-
-
-@contextlib.contextmanager
-def quiet() -> Iterator[None]:
-    """Tamaas's solvers log every iteration to file descriptors 1 and 2: kept out of the
-    run's output."""
-    sys.stdout.flush()
-    sys.stderr.flush()
-    saved = [os.dup(fd) for fd in (1, 2)]
-    with tempfile.TemporaryFile() as sink:
-        for fd in (1, 2):
-            os.dup2(sink.fileno(), fd)
-        try:
-            yield
-        finally:
-            for fd, old in zip((1, 2), saved, strict=True):
-                os.dup2(old, fd)
-                os.close(old)
 
 
 def _profile(case: Case, pad: tuple[int, int] = (0, 0)) -> np.ndarray:
@@ -77,7 +56,7 @@ def normal(case: Case, periodic: bool) -> np.ndarray:
         tm.ModelFactory.registerNonPeriodic(model, "dcfft")
         solver.setIntegralOperator("dcfft")
     solver.max_iter = case.solver.max_iter
-    with quiet():
+    with silenced():
         solver.solve(case.load.P / (g.Lx * g.Ly))
     return np.array(model.traction, dtype=float).reshape(g.nx, g.ny)
 
@@ -97,7 +76,7 @@ def partial_slip(case: Case, periodic: bool) -> tuple[np.ndarray, np.ndarray, np
     solver = tm.PolonskyKeerTan(model, _profile(case, pad), 0.0, case.friction.mu1)
     solver.max_iter = PKT_ITERATIONS
     area = side[0] * side[1]
-    with quiet():
+    with silenced():
         solver.solve([(ld.Qx or 0.0) / area, (ld.Qy or 0.0) / area, ld.P / area])
     t = np.array(model.traction, dtype=float).reshape(*n, 3)
     t = t[pad[0]:pad[0] + g.nx, pad[1]:pad[1] + g.ny]

@@ -157,3 +157,19 @@ def test_the_console_script_loads_plugins_at_start(tmp_path):
         assert done.returncode == 0
         assert expect in done.stdout + done.stderr
         assert "solver ic        available" in done.stdout
+
+
+def test_silenced_keeps_a_peers_output_out_and_restores_it(capfd):
+    """What a peer code writes to file descriptors 1 and 2 inside ``silenced`` is not in
+    the run's output; both descriptors write again after it, also after an error."""
+    import os
+
+    from reports.registry.plugins import silenced
+
+    with pytest.raises(RuntimeError), silenced():
+        os.write(1, b"banner\n")
+        os.write(2, b"log line\n")
+        raise RuntimeError("the peer failed")
+    os.write(1, b"after\n")
+    out, err = capfd.readouterr()
+    assert "banner" not in out and "log line" not in err and "after" in out

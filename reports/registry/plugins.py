@@ -16,8 +16,12 @@ built-in solvers never depend on it.
 
 from __future__ import annotations
 
+import contextlib
+import os
 import re
-from collections.abc import Collection
+import sys
+import tempfile
+from collections.abc import Collection, Iterator
 from importlib import metadata
 
 from reports.registry.record import SolverRecord
@@ -73,3 +77,22 @@ def load(builtin: Collection[str], group: str = GROUP
         if rec is not None:
             records[ep.name] = rec
     return records, errors
+
+
+@contextlib.contextmanager
+def silenced() -> Iterator[None]:
+    """Keep what a plugin's peer code writes to file descriptors 1 and 2 (a banner, a log
+    line per iteration) out of the run's output: both point at a scratch file while the
+    block runs, and back after it, also when it raises."""
+    sys.stdout.flush()
+    sys.stderr.flush()
+    saved = [os.dup(fd) for fd in (1, 2)]
+    with tempfile.TemporaryFile() as sink:
+        for fd in (1, 2):
+            os.dup2(sink.fileno(), fd)
+        try:
+            yield
+        finally:
+            for fd, old in zip((1, 2), saved, strict=True):
+                os.dup2(old, fd)
+                os.close(old)
