@@ -12,6 +12,7 @@ import pandas as pd
 from reports.registry import solvers as registry
 from reports.registry.tolerances import GATED
 from reports.render import plots
+from reports.render.cross_check import pairs_side_by_side
 from reports.render.html_blocks import escape, fig, table_html
 from reports.render.html_sections import (
     convergence_section,
@@ -179,6 +180,13 @@ def _metrics(case: CaseResults) -> list[str]:
                               "note"]].rename(columns={"param": "worst at param",
                                                        "note": "why"})
             parts.append(table_html(off, left=3, row_class=lambda _: "ng"))
+        side = pairs_side_by_side(m)
+        if not side.empty:
+            parts.append("<h4>Pairs side by side</h4><p>The worst value of each pair of "
+                         "solvers, one column each (another solver, then a closed form): "
+                         "whether two references agree with each other where they differ "
+                         "from a third. ✗ failed, (ng) not gated.</p>"
+                         + table_html(side, left=2))
         cols = ["param", "step", "pair", "oracle", "quantity", "metric", "value", "tolerance",
                 "passed", "status", "note", "tolerance_key", "tolerance_kind", "budget",
                 "uncertainty"]
