@@ -9,7 +9,8 @@ What it declines, case by case:
   (``ALMContactFrictional``, 10.4.4) did not converge on the sphere-on-block contact in
   any setting tried, with its own frictional tests' settings among them: the Newton solve
   diverges from its second iteration, even at 5 % of the normal approach, where the
-  same half model converges without friction in 4 iterations; its penalty frictional
+  same half model converges without friction in 4 iterations (other variants lose the
+  contact, or reach no step in 400 s); its penalty frictional
   contact converges under the normal load but carries almost no tangential load in
   stick, and fails with a stiffer stick (benchmarks/README.md,
   "Kratos through the gates"; issue 60, point 3);
