@@ -52,3 +52,11 @@ def test_one_pair_is_no_cross_check():
     m = rows()
     assert pairs_side_by_side(m[m["pair"] == "kratos-fem"]).empty
     assert pairs_side_by_side(m.iloc[0:0]).empty
+
+
+def test_a_quantity_gated_at_some_rows_shows_its_gated_worst():
+    m = rows()
+    extra = m.iloc[[0]].assign(value=0.5, status="below floor", param="c")
+    t = pairs_side_by_side(pd.concat([m, extra], ignore_index=True))
+    t = t.set_index(["quantity", "metric"])
+    assert t.loc[("p_max", "rel"), "kratos-analytic"] == "6e-05"

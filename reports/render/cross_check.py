@@ -2,9 +2,10 @@
 value of each pair (``fem-analytic``, ``kratos-analytic``, ``kratos-fem``, …) in one row,
 so that a reader sees whether two references agree with each other where they differ
 from a third solver (issue 60, point 4).  A view of the metrics rows, nothing computed
-anew: each cell is the value of the row the metrics table shows as that pair's worst
-(the largest value over tolerance, :func:`reports.render.html._worst`'s rule), marked
-``✗`` where that row failed its gate and ``(ng)`` where the quantity is not gated.
+anew: each cell is the value of the row the metrics tables show as that pair's worst
+(:func:`reports.store.readers.worst` for a gated quantity,
+:func:`reports.store.readers.ungated` for one that is not), marked ``✗`` where that row
+failed its gate and ``(ng)`` where the quantity is not gated.
 
 The columns are ordered by the pair's oracle (another solver first, then a closed form),
 then by name, so the table does not depend on the order in which the solvers ran.
@@ -16,6 +17,7 @@ import math
 
 import pandas as pd
 
+from reports.store import readers
 from reports.store.readers import gated
 
 #: the oracles whose pairs compare two solvers' fields (a metamorphic relation compares
@@ -40,10 +42,10 @@ def pairs_side_by_side(metrics: pd.DataFrame) -> pd.DataFrame:
     if m["pair"].nunique() < 2:
         return pd.DataFrame()
     on = gated(m)
-    value, tol = m["value"].astype(float), m["tolerance"].astype(float)
-    margin = (value.fillna(math.inf) / tol.where(tol > 0)).fillna(value).fillna(math.inf)
-    m = m.assign(on=on, margin=margin)
-    worst = m.loc[m.groupby(["pair", "quantity", "metric"])["margin"].idxmax()]
+    keys = ["pair", "quantity", "metric"]
+    worst = pd.concat([readers.worst(m[on]).assign(on=True),
+                       readers.ungated(m).assign(on=False)])
+    worst = worst.drop_duplicates(keys)  # a quantity gated at some rows: its gated worst
     rank = {o: k for k, o in enumerate(ORACLES)}
     pairs = sorted(worst["pair"].unique(),
                    key=lambda p: (rank[worst.loc[worst["pair"] == p, "oracle"].iloc[0]], p))

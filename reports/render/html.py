@@ -23,18 +23,18 @@ from reports.render.html_sections import (
 )
 from reports.render.study_frames import scales
 from reports.store.event_table import EVENTS_NOTE, events_view
-from reports.store.readers import gated, ungated
+from reports.store.readers import gated, ungated, worst
 from reports.store.results import CaseResults, not_converged
 
 
 def _worst(metrics: pd.DataFrame) -> pd.DataFrame:
-    """Per (pair, quantity, metric): the worst value over sweep points and steps."""
-    m = metrics.assign(margin=metrics["value"].fillna(math.inf) / metrics["tolerance"])
-    idx = m.groupby(["pair", "quantity", "metric"], sort=False)["margin"].idxmax()
+    """Per (pair, quantity, metric): the worst value over sweep points and steps
+    (:func:`reports.store.readers.worst`)."""
     cols = ["pair", "oracle", "quantity", "metric", "value", "tolerance", "tolerance_kind",
             "budget", "uncertainty", "passed", "param", "step"]
-    worst = m.loc[idx, [c for c in cols if c in m.columns]]
-    return worst.rename(columns={"param": "worst at param", "step": "step"})
+    rows = worst(metrics)
+    return rows[[c for c in cols if c in rows.columns]].rename(
+        columns={"param": "worst at param", "step": "step"})
 
 
 def case_section(case: CaseResults) -> str:

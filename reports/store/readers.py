@@ -251,6 +251,16 @@ def gated(metrics: pd.DataFrame) -> pd.Series:
     return metrics["status"] == GATED
 
 
+def worst(metrics: pd.DataFrame) -> pd.DataFrame:
+    """Per (pair, quantity, metric): the row of the largest value over its tolerance (a
+    value that is not a number counts as the largest), the worst the report shows of a
+    gated quantity."""
+    margin = metrics["value"].fillna(math.inf) / metrics["tolerance"]
+    idx = margin.groupby([metrics["pair"], metrics["quantity"], metrics["metric"]],
+                         sort=False).idxmax()
+    return metrics.loc[idx]
+
+
 def ungated(metrics: pd.DataFrame) -> pd.DataFrame:
     """Per (pair, quantity, metric) of the rows that are not gated: the row of the
     largest value, with ``rows`` (how many there are) and its ``note`` (why)."""
