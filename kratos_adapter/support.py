@@ -6,13 +6,9 @@ What it declines, case by case:
 
 - wear (sliding wear, fretting): no wear law is driven through Kratos here;
 - a tangential load, a rigid shift or full sliding: Kratos' frictional mortar contact
-  (``ALMContactFrictional``, 10.4.4) did not converge on the sphere-on-block contact in
-  any setting tried, with its own frictional tests' settings among them: the Newton solve
-  diverges from its second iteration, even at 5 % of the normal approach, where the
-  same half model converges without friction in 4 iterations (other variants lose the
-  contact, or reach no step in 400 s); its penalty frictional
-  contact converges under the normal load but carries almost no tangential load in
-  stick, and fails with a stiffer stick (benchmarks/README.md,
+  (augmented-Lagrangian and penalty, 10.4.4) did not converge on the sphere-on-block
+  contact in any setting tried, its own frictional tests' settings among them, where
+  the same model converges without friction (the measurements: benchmarks/README.md,
   "Kratos through the gates"; issue 60, point 3);
 - dissimilar materials with friction under a normal load: the normal–tangential coupling
   (K ≠ 0) needs the frictional contact;
