@@ -18,17 +18,16 @@ import math
 import pandas as pd
 
 from reports.store import readers
-from reports.store.readers import gated
 
 #: the oracles whose pairs compare two solvers' fields (a metamorphic relation compares
 #: one solver with itself and has no place among the pairs)
 ORACLES = ("other solver", "closed form")
 
 
-def _cell(row: pd.Series, on: bool) -> str:
+def _cell(row: pd.Series) -> str:
     value = row["value"]
     text = "—" if not math.isfinite(value) else f"{value:.3g}"
-    if not on:
+    if not row["on"]:
         return f"{text} (ng)"
     return text if bool(row["passed"]) else f"{text} ✗"
 
@@ -41,7 +40,7 @@ def pairs_side_by_side(metrics: pd.DataFrame) -> pd.DataFrame:
     m = metrics[metrics["oracle"].isin(ORACLES)]
     if m["pair"].nunique() < 2:
         return pd.DataFrame()
-    on = gated(m)
+    on = readers.gated(m)
     keys = ["pair", "quantity", "metric"]
     worst = pd.concat([readers.worst(m[on]).assign(on=True),
                        readers.ungated(m).assign(on=False)])
@@ -49,7 +48,7 @@ def pairs_side_by_side(metrics: pd.DataFrame) -> pd.DataFrame:
     rank = {o: k for k, o in enumerate(ORACLES)}
     pairs = sorted(worst["pair"].unique(),
                    key=lambda p: (rank[worst.loc[worst["pair"] == p, "oracle"].iloc[0]], p))
-    cells = worst.assign(cell=[_cell(r, r["on"]) for _, r in worst.iterrows()])
+    cells = worst.assign(cell=[_cell(r) for _, r in worst.iterrows()])
     table = cells.pivot(index=["quantity", "metric"], columns="pair", values="cell")
     table = table.reindex(columns=pairs).fillna("")
     return table.sort_index().reset_index().rename_axis(columns=None)
