@@ -5,8 +5,9 @@ Covered (:func:`has_solution`):
 - ``static``, no tangential load: Hertz (any elastic pair when frictionless; with
   friction only for identical materials, which keep the tangential tractions zero).
 - ``static``, dissimilar materials with friction and no tangential load: Spence's
-  frictional compression (:mod:`analytic.spence`): Hertz's pressure and the slip
-  annulus's traction, whose sign is the coupling's.
+  frictional compression (:func:`analytic.spence.compression`), the coupling solved
+  whole on rings (numerically exact): the pressure, the radial shear of the stick disc
+  and the slip annulus, the stick and contact radii; no stresses.
 - ``static``, ``load.sliding``: full sliding (identical materials, or frictionless).  The
   traction on body a is p · t with the constant vector t = -M² d_e / ‖d‖*_μ of
   formulation Eq. 13 (d the sliding direction of a relative to b): -μ p d for isotropic
@@ -50,7 +51,6 @@ from cases.result import (
 from cases.steps import sliding_outputs
 
 from . import fields, fretting_case, spence, wear
-from . import hertz as hz
 from .fields import sliding_traction_vector
 
 SOLVER_NAME = "analytic"
@@ -124,31 +124,47 @@ def static_step(case: Case) -> StepResult:
 
 
 def compression_step(case: Case) -> StepResult:
-    """Normal loading of a dissimilar pair with friction (:mod:`analytic.spence`): Hertz's
-    pressure, the slip annulus's traction μ p r̂ (its sign from Dundurs' β), NaN in the
-    stick disc; no stresses (the stick disc's traction has no closed form here) and no
-    stick area (the coupled stick disc is smaller than (SP1)'s, which bounds it)."""
+    """Normal loading of a dissimilar pair with friction (:mod:`analytic.spence`): Spence's
+    self-similar compression with the coupling solved whole (:func:`analytic.spence.
+    compression`, docs/formulation.md §2.9) — the pressure, the radial shear in the stick
+    disc and the slip annulus, the stick radius, the contact radius and the approach of
+    the load (or the load of the approach); no stresses."""
     t0 = time.perf_counter()
-    h = fields.normal(case)
-    fields.check_grid(case, h.a, "Hertz")
-    beta, mu = spence.dundurs_beta(case), case.friction.mu1
-    c = spence.stick_ratio(beta, mu) * h.a
+    G, nu, K = spence.pair_constants(case)
+    mu = case.friction.mu1
+    sol = spence.compression(nu, K, mu)
+    R = case.R
+    if case.load.P is not None:
+        P = case.load.P
+        a = (P * R / (G * sol.load)) ** (1.0 / 3.0)
+    else:
+        a = math.sqrt(case.load.approach * R / sol.delta)
+        P = G * a ** 3 * sol.load / R
+    fields.check_grid(case, a, "Spence's compression")
+    c, unit = sol.k * a, G * a / R
     g = case.grid
     X, Y = np.meshgrid(g.x, g.y, indexing="ij")
     r = np.hypot(X, Y)
-    p_n = hz.pressure(r, h.a, h.p0)
-    p_x, p_y = spence.slip_traction(X, Y, p_n, h.a, c, beta, mu)
-    state = np.where(r < h.a, np.where(r <= c, STICK, SLIP), OPEN).astype(np.int8)
+    inside = r < a
+    p_n = np.where(inside, unit * np.interp(r / a, sol.rho, sol.p), 0.0)
+    q = np.where(inside, unit * np.interp(r / a, sol.rho, sol.q), 0.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        p_x, p_y = (np.where(r > 0, q * v / r, 0.0) for v in (X, Y))
+    state = np.where(inside, np.where(r <= c, STICK, SLIP), OPEN).astype(np.int8)
     zero = np.zeros_like(p_n)
-    surface = dict(p_n=p_n, p_x=p_x, p_y=p_y, gap=hz.gap(r, h.a, h.R), wear_a=zero,
-                   wear_b=zero.copy(), state=state)
+    delta = sol.delta * a * a / R
+    surface = dict(p_n=p_n, p_x=p_x, p_y=p_y, gap=sol.gap(r / a) * a * a / R,
+                   wear_a=zero, wear_b=zero.copy(), state=state)
     nan = math.nan
+    area, stick = math.pi * a * a, math.pi * c * c
     scalars = dict(
-        step=0, s=nan, cycle=nan, P=h.P, Qx=0.0, Qy=0.0, contact_area=h.area, a_x=h.a,
-        a_y=h.a, p_max=h.p0, w_max=0.0, wear_volume=0.0, vm_max=nan, vm_max_x=nan,
-        vm_max_y=nan, vm_max_z=nan, stick_area=nan, iterations=0, converged=True,
-        approach=h.delta, dundurs_beta=beta, stick_radius_uncoupled=c, p0=h.p0, a0=h.a,
-        wall_s=time.perf_counter() - t0)
+        step=0, s=nan, cycle=nan, P=P, Qx=0.0, Qy=0.0, contact_area=area, a_x=a, a_y=a,
+        p_max=unit * float(sol.p.max()), w_max=0.0, wear_volume=0.0, vm_max=nan,
+        vm_max_x=nan, vm_max_y=nan, vm_max_z=nan, stick_area=stick, slip_area=area - stick,
+        iterations=0, converged=True, approach=delta,
+        dundurs_beta=spence.dundurs_beta(case), stick_radius=c,
+        stick_radius_uncoupled=spence.stick_ratio(spence.dundurs_beta(case), mu) * a,
+        p0=3.0 * P / (2.0 * math.pi * a * a), a0=a, wall_s=time.perf_counter() - t0)
     return StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(), surface=surface)
 
 

@@ -274,6 +274,16 @@ class Case:
         return self.a.E == self.b.E and self.a.nu == self.b.nu
 
     @property
+    def dundurs_beta(self) -> float:
+        """Dundurs' β of the pair, ½ [(1 − 2ν_a)/G_a − (1 − 2ν_b)/G_b] / [(1 − ν_a)/G_a +
+        (1 − ν_b)/G_b] (docs/formulation.md §2.8; K / (1 − ν) of Eq. 6): 0 without the
+        normal–tangential coupling."""
+        a, b = self.a, self.b
+        ga, gb = a.E / (2 * (1 + a.nu)), b.E / (2 * (1 + b.nu))
+        return 0.5 * ((1 - 2 * a.nu) / ga - (1 - 2 * b.nu) / gb) / ((1 - a.nu) / ga
+                                                                     + (1 - b.nu) / gb)
+
+    @property
     def E_star(self) -> float:
         """Contact modulus 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b."""
         return 1.0 / ((1 - self.a.nu**2) / self.a.E + (1 - self.b.nu**2) / self.b.E)
