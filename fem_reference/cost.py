@@ -27,7 +27,7 @@ import numpy as np
 
 from cases.model import Case, FemSettings
 from cases.result import Cost
-from cases.steps import fretting_outputs, sliding_outputs, sliding_steps
+from cases.steps import fretting_outputs, normal_fractions, sliding_outputs, sliding_steps
 
 from .model.fem_model import FemModel
 from .model.mesh import SURFACE_GRADING, MeshSpec
@@ -217,7 +217,8 @@ class Breakdown:
 def contact_solves(case: Case, law: str) -> tuple[float, int, int]:
     """(contact solves, Newton iterations per solve, output steps) of the load path
     (:mod:`fem_reference.loading`).  The normal load increments of dissimilar materials
-    count by their contact size: the k-th of 5 has A ∝ (k/5)^(2/3), A³ ∝ (k/5)²."""
+    count by their contact size: the one of radius r a (:func:`cases.steps.normal_fractions`,
+    the load fraction r³) has A³ ∝ r⁶."""
     if case.kind == "sliding_wear" and case.sliding_wear is not None:
         sw = case.sliding_wear
         n = sliding_steps(sw)
@@ -231,7 +232,8 @@ def contact_solves(case: Case, law: str) -> tuple[float, int, int]:
                 len(fretting_outputs(fr)))
     if law != "friction":
         return 1, ITERATIONS["single"], 1
-    n_normal = 1.0 if case.identical_materials else sum((k / 5) ** 2 for k in range(1, 6))
+    n_normal = 1.0 if case.identical_materials else sum(
+        f ** (6.0 / (3 if case.load.P is not None else 2)) for f in normal_fractions(case))
     n_tangential = 5 if case.load.tangential_mode in ("load", "shift") else 0
     return n_normal + n_tangential, ITERATIONS["friction"], 1
 

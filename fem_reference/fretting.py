@@ -130,7 +130,7 @@ def fretting_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
     loading, path = fr.loading_path(), fr.cycle_path()
     loops: list[tuple] = []
     cycles: list[tuple] = []
-    with progress_bar(progress, normal_increments(case) + loading.size + n_sim * path.size,
+    with progress_bar(progress, len(normal_increments(case)) + loading.size + n_sim * path.size,
               case) as bar:
         sol, pev, iters = normal_loading(run, bar)
         for u in loading:

@@ -3,7 +3,8 @@ fretting (:mod:`fem_reference.fretting`); :func:`fem_reference.solver.load_path`
 the path of a case.
 
 - static cases: the normal load (or approach) first — in one step for identical
-  materials (no normal–tangential coupling), in 5 increments otherwise — then a
+  materials (no normal–tangential coupling), in the increments of
+  :func:`cases.steps.normal_fractions` otherwise — then a
   tangential load (Qx, Qy) or shift in 5 increments with the friction history (return
   map); full sliding (``load.sliding``) prescribes the slip direction instead (Eq. 13).
   One output step (``step = 0``) with the final state.
@@ -25,7 +26,7 @@ import numpy as np
 
 from cases.model import Case
 from cases.result import OPEN, SLIP, STICK
-from cases.steps import sliding_outputs, sliding_steps
+from cases.steps import normal_fractions, sliding_outputs, sliding_steps
 
 from .contact.augmented import augmented
 from .contact.control import Control, Solution
@@ -35,7 +36,6 @@ from .errors import FemError
 from .model.shape import slide_direction, wear_compliances
 from .run import OutputState, Run, hertz_start
 
-N_NORMAL_DISSIMILAR = 5  # normal load increments of dissimilar materials
 N_TANGENTIAL = 5  # tangential load (or shift) increments
 
 
@@ -141,7 +141,7 @@ def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
         yield OutputState(step=0, sol=sol, sample_ev=pev, slip=slip, iterations=iters)
         return
     n_tangential = N_TANGENTIAL if mode in ("load", "shift") else 0
-    with progress_bar(progress, normal_increments(case) + n_tangential, case) as bar:
+    with progress_bar(progress, len(normal_increments(case)) + n_tangential, case) as bar:
         sol, pev, iters = normal_loading(run, bar)
         gt_ref = pev.gt.copy()
         for i in range(1, n_tangential + 1):
@@ -153,22 +153,23 @@ def static_path(run: Run, progress: bool = False) -> Iterator[OutputState]:
     yield OutputState(step=0, sol=sol, sample_ev=pev, slip=slip, iterations=iters)
 
 
-def normal_increments(case: Case) -> int:
-    """Increments of the normal loading: one for identical materials (no
-    normal–tangential coupling), :data:`N_NORMAL_DISSIMILAR` otherwise."""
-    return 1 if case.identical_materials else N_NORMAL_DISSIMILAR
+def normal_increments(case: Case) -> tuple[float, ...]:
+    """The load (or approach) fractions of the normal loading's increments: one for
+    identical materials (no normal–tangential coupling), those of
+    :func:`cases.steps.normal_fractions` otherwise."""
+    return (1.0,) if case.identical_materials else normal_fractions(case)
 
 
 def normal_loading(run: Run, bar=None) -> tuple[Solution, Evaluation, int]:
     """The normal load (or approach) in :func:`normal_increments` increments with the
     friction history committed; the last solution, its sample evaluation and the Newton
     iterations of all increments."""
-    n_normal = normal_increments(run.model.case)
-    if n_normal > 1:  # start the first increment from its own Hertz solution
-        run.u, run.delta = hertz_start(run.model, run.nodes, 1.0 / n_normal)
+    fractions = normal_increments(run.model.case)
+    if len(fractions) > 1:  # start the first increment from its own Hertz solution
+        run.u, run.delta = hertz_start(run.model, run.nodes, fractions[0])
     iters = 0
-    for i in range(1, n_normal + 1):
-        sol, pev = solve_increment(run, control(run, P_frac=i / n_normal))
+    for f in fractions:
+        sol, pev = solve_increment(run, control(run, P_frac=f))
         commit(run, sol, pev)
         iters += sol.iterations
         if bar is not None:

@@ -9,6 +9,7 @@ import numpy as np
 
 from cases.model import Case
 from cases.result import RunResult, StepResult
+from cases.steps import normal_fractions
 
 from .contact import ContactSolver, ContactState, StepSolution
 from .operator import WORKERS
@@ -17,7 +18,6 @@ from .problem import contact_solver, profile, slide_direction, stress_evaluator
 from .wear import solve_evolution
 
 SLIDE_FACTOR = 1e6  # rigid slip of a gross-sliding step, in units of the grid size
-NORMAL_INCREMENTS_COUPLED = 5  # normal loading steps when K != 0 and friction (history)
 TANGENTIAL_INCREMENTS = 5  # tangential loading steps after the normal load
 
 
@@ -26,20 +26,20 @@ def static_step(case: Case, solver: ContactSolver, h: np.ndarray,
     """Solve a static case along its load path: the normal load (or approach) first,
     the tangential load (or shift) after it (cases.md, case 2).  With friction the result
     depends on the path when the materials couple normal and tangential (K != 0) or the
-    tangential load is not monotonic in direction, so the normal load is applied in
-    ``NORMAL_INCREMENTS_COUPLED`` steps when coupled and a tangential load or shift in
-    ``TANGENTIAL_INCREMENTS`` steps, each with the slip history of the previous one (the
-    same path as the FEM reference).  Gross sliding is one step after the normal load."""
+    tangential load is not monotonic in direction, so the normal load is applied in the
+    increments of :func:`cases.steps.normal_fractions` when coupled and a tangential load
+    or shift in ``TANGENTIAL_INCREMENTS`` steps, each with the slip history of the
+    previous one (the same path as the FEM reference).  Gross sliding is one step after
+    the normal load."""
     ld = case.load
     mode = ld.tangential_mode
     frictional = case.friction.mu1 > 0
     normal = ({"P": ld.P} if ld.load_controlled else {"approach": ld.approach})
-    n_normal = NORMAL_INCREMENTS_COUPLED if frictional and solver.op.coupled else 1
+    fractions = normal_fractions(case) if frictional and solver.op.coupled else (1.0,)
     base = np.zeros(2) if prev is None else np.array([prev.shift_x, prev.shift_y])
     sol = None
-    for i in range(1, n_normal + 1):
-        frac = {k: v * i / n_normal for k, v in normal.items()}
-        sol = solver.solve(h, prev=prev, shift=base, **frac)
+    for f in fractions:
+        sol = solver.solve(h, prev=prev, shift=base, **{k: v * f for k, v in normal.items()})
         prev = sol.state
     if mode == "load" and frictional:
         Q = np.array([ld.Qx or 0.0, ld.Qy or 0.0])

@@ -55,3 +55,34 @@ def test_a_pin_without_output_distances_writes_its_start_and_end(tmp_path):
     """The same for every solver (the FEM used to write every step, the others two)."""
     (case,) = _load(PIN + "step = 2.0\ndistance = 10.0\n", tmp_path)
     assert output_steps(case) == [0, 5]
+
+
+def test_the_normal_loading_of_a_coupled_contact():
+    """cases.steps.normal_fractions: contact radii (load ∝ a³, approach ∝ a²) from a fifth
+    to 0.98 by one ratio, then 1; the ratio 1 + 0.01/(|β| μ) within [1.1, 1.4] (a work
+    count: 7 increments for the bundled spence, β μ = 0.0023, 19 at β μ = 0.5); the
+    first contact at least two cells wide."""
+    import dataclasses
+
+    import numpy as np
+
+    from cases.loader import load_case
+    from cases.steps import normal_fractions
+
+    case = load_case("spence", quick=True)[0]
+    f = np.array(normal_fractions(case))
+    radii = f ** (1 / 3)
+    assert len(f) == 7 and f[-1] == 1.0 and radii[0] == pytest.approx(0.2)
+    assert radii[-2] == pytest.approx(0.98)
+    ratios = radii[1:-1] / radii[:-2]
+    np.testing.assert_allclose(ratios, ratios[0])
+    assert ratios[0] <= 1.4
+    a0, _ = case.hertz_scales
+    held = case.with_changes(load=dataclasses.replace(case.load, P=None,
+                                                      approach=a0 * a0 / case.R))
+    np.testing.assert_allclose(np.array(normal_fractions(held)) ** 0.5, radii)
+    strong = case.with_changes(friction=dataclasses.replace(case.friction, mu1=8.7, mu2=8.7))
+    assert len(normal_fractions(strong)) == 19  # |β| μ = 0.5: the ratio 1.1
+    coarse = case.with_changes(grid=dataclasses.replace(case.grid, nx=9, ny=9))
+    first = normal_fractions(coarse)[0] ** (1 / 3) * case.hertz_scales[0]
+    assert first >= 2 * coarse.grid.dx * (1 - 1e-12)
