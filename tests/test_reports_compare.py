@@ -358,3 +358,61 @@ def test_compare_point_adds_the_cycle_metrics_at_common_output_cycles():
     assert got.loc[("loop_q", "max"), "tolerance_key"] == "default:loop_q"
     assert got.loc[("energy", "rel"), "tolerance"] == pytest.approx(
         tol.budget("ic", "energy", "rel") + tol.budget("analytic", "energy", "rel"))
+
+
+def test_a_traction_against_a_zero_reference_is_measured_on_mu_p0():
+    """Issue 73, point 2: where the reference carries no tangential traction (a solver
+    that drops the coupling, or a frictionless reference), a traction of the other solver
+    is measured on the largest traction the contact can carry, μ p0 — not on p0, where at
+    μ = 0.04 the whole traction reads 4 %: Mindlin's traction at μ = 0.04 against zero
+    reads its rms over μ p0, more than twice the ic-fem tolerance (on p0: 1.5 %)."""
+    from cases.model import Friction
+
+    x = np.linspace(-1.3, 1.3, 61)
+    mindlin_step, none = _mindlin_step(x, 0.794), _mindlin_step(x, 0.794)
+    none.surface["p_x"] = 0 * none.surface["p_x"]
+    mu = 0.04
+    mindlin_step.surface["p_x"] = mindlin_step.surface["p_x"] * (mu / 0.3)
+    q = mindlin_step.surface["p_x"]
+    inside = (mindlin_step.surface["p_n"] > 0)
+    rows = {(qq, m): v for qq, m, v in compare_steps(
+        mindlin_step, none, a0=1.0, p0=1.0, friction=Friction(mu1=mu, mu2=mu))}
+    assert rows[("p_x", "max")] > 0.5  # the peak of μ p0's size, on μ p0
+    rms = float(np.sqrt(np.mean(q[inside] ** 2)))
+    assert rows[("p_x", "l2")] == pytest.approx(rms / mu, rel=0.25)
+    assert rows[("p_x", "l2")] > 2 * tol.default_tolerance("ic-fem", "p_x", "l2")
+    # without the case's friction (a frictionless reference): on p0, where any is wrong
+    rows = {(qq, m): v for qq, m, v in compare_steps(mindlin_step, none, a0=1.0, p0=1.0)}
+    assert rows[("p_x", "l2")] == pytest.approx(rms, rel=0.25)
+    assert rows[("p_x", "l2")] < tol.default_tolerance("ic-fem", "p_x", "l2") / 5
+
+
+def test_the_slip_zone_of_a_resolution_floor_is_the_references():
+    """Issue 73, point 1: the floors count the closed form's zones where it states them,
+    else the union of both solvers' (the larger contact, the smaller stick radius): a
+    solver that reports no slip zone does not take its own traction rows out of the gate,
+    whichever side of the pair it is on."""
+    from reports.compare.point import step_resolution
+
+    x = np.linspace(-1.3, 1.3, 61)
+    h = x[1] - x[0]
+
+    def step(a: float, c: float | None, **extra) -> StepResult:
+        scalars = {"contact_area": math.pi * a * a, **extra}
+        if c is not None:
+            scalars["stick_area"] = math.pi * c * c
+        return StepResult(scalars=scalars, x=x, y=x, planes={}, surface={})
+
+    right, stuck = step(1.0, 0.8), step(1.0, 1.0)  # stuck: no slip zone at all
+    for sa, sb in ((stuck, right), (right, stuck)):
+        assert step_resolution(sa, sb, 0.0).slip == pytest.approx(0.2 / h)
+    # a closed form states its own zones, whatever the solver under test reports
+    closed = step(1.0, 0.7)
+    assert step_resolution(stuck, closed, 0.0, closed=True).slip == pytest.approx(0.3 / h)
+    assert step_resolution(step(1.0, 0.1), closed, 0.0, closed=True).slip == \
+        pytest.approx(0.3 / h)
+    # a closed form that bounds its stick zone by a radius (Spence's (SP1))
+    spence = step(1.0, None, stick_radius=0.75)
+    assert step_resolution(stuck, spence, 0.0, closed=True).slip == pytest.approx(0.25 / h)
+    # the contact radius too: the larger of the two between solvers
+    assert step_resolution(step(0.5, 0.5), right, 0.0).contact == pytest.approx(1.0 / h)

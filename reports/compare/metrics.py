@@ -172,7 +172,7 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
     hx = max(spacing(sa.x), spacing(sb.x))
     hy = max(spacing(sa.y), spacing(sb.y))
     band = max(hx, hy, cell)  # the stick band's half-width (module doc)
-    rows = _surface_rows(sa, sb, a0, p0, band)
+    rows = _surface_rows(sa, sb, a0, p0, band, tangential_scale(p0, friction))
     plane_rows, hz, samples = _plane_rows(sa, sb, p0, x0, y0, max(hx, hy, reach), band)
     cells = (max(hx, cell), max(hy, cell), max(hz, cell) if hz > 0 else 0.0)
     radius = [scalar(st, k) for st in (sa, sb) for k in ("a_x", "a_y")]
@@ -183,12 +183,22 @@ def compare_steps(sa: StepResult, sb: StepResult, *, a0: float, p0: float,
                                                             vm_from_scalars=not vm_rows)
 
 
-def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: float
-                  ) -> list[tuple[str, str, float]]:
+def tangential_scale(p0: float, friction: Friction | None) -> float:
+    """The largest tangential traction a contact of peak pressure ``p0`` can carry, μ p0
+    (μ the larger principal coefficient, Eq. 9): the scale of a tangential traction whose
+    reference is zero, so that a traction that should not be there is measured on the
+    size it could have, not on p0 (p0 without friction, where any traction is wrong)."""
+    mu = max(friction.mu1, friction.mu2) if friction is not None else 0.0
+    return mu * p0 if mu > 0 else p0
+
+
+def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: float,
+                  q0: float) -> list[tuple[str, str, float]]:
     """Surface fields: the L2 norms over the contact of either solver, off each one's edge
     band (a contact one of them lacks is an error, not a smaller support); the max norms
     over the interior of the common contact, the tangential tractions' also off the stick
-    band of half-width ``band`` (module doc)."""
+    band of half-width ``band`` (module doc).  ``q0``: the tangential tractions' scale
+    (:func:`tangential_scale`)."""
     if not (sa.surface and sb.surface and "p_n" in sa.surface and "p_n" in sb.surface):
         return []
     xs, ys = common_axis(sa.x, sb.x), common_axis(sa.y, sb.y)
@@ -213,8 +223,8 @@ def _surface_rows(sa: StepResult, sb: StepResult, a0: float, p0: float, band: fl
     kink = stick_band((sa, sb), xs, ys, band) & contact
     rows = []
     for q, (fa, fb) in fields.items():
-        scale = p0 if q.startswith("p_") else a0
         tangential = q in ("p_x", "p_y")
+        scale = q0 if tangential else p0 if q == "p_n" else a0
         ref = pt_ref if tangential else wear_ref.get(q)
         off = inner & ~kink if tangential else inner
         err = field_errors(fa, fb, l2_mask, scale, ref, max_mask=off)

@@ -88,6 +88,7 @@ def point_rows(case: Case, results: Mapping[str, RunResult], probed: bool = Fals
     floors of the pairs it judges count the probing solver's cells
     (:mod:`reports.registry.resolution`)."""
     x0, y0 = case.plane_centre
+    coupled = case.dundurs_beta != 0 and max(case.friction.mu1, case.friction.mu2) > 0
     probed = probed and probed_width(case, list(results)) is not None
     own = solvers.record(PROBE_SOLVER).cell_size(case) if probed else math.nan
     records = []
@@ -99,10 +100,12 @@ def point_rows(case: Case, results: Mapping[str, RunResult], probed: bool = Fals
         for n, sa, sb in common_steps(ra, rb):
             rows = step_values(case, pair, ra, rb, sa, sb, cell, reach)
             exact = solvers.exact_pair(pair)
-            resolution = None if exact else step_resolution(sa, sb, cell, x0, y0)
+            closed = solvers.oracle(pair) == solvers.CLOSED_FORM
+            resolution = None if exact else step_resolution(sa, sb, cell, x0, y0, closed,
+                                                            coupled)
             # the probe measures what the coarser element does to the worn annulus
             # (reports.registry.resolution): its wear floors count the probing solver's cells
-            wear_resolution = step_resolution(sa, sb, own, x0, y0) \
+            wear_resolution = step_resolution(sa, sb, own, x0, y0, closed, coupled) \
                 if probed and not exact and probed_pair(pair) else resolution
             for quantity, metric, value in rows:
                 shown = None if exact else _SHOWN.get(metric)  # a band's max, never gated
@@ -125,21 +128,44 @@ def point_rows(case: Case, results: Mapping[str, RunResult], probed: bool = Fals
 
 
 def step_resolution(sa: StepResult, sb: StepResult, cell: float, x0: float = 0.0,
-                    y0: float = 0.0) -> Resolution | None:
+                    y0: float = 0.0, closed: bool = False, coupled: bool = False
+                    ) -> Resolution | None:
     """The cells (the coarser of the sample spacings and ``cell``) across the contact
-    radius a, the slip zone of reference ``sb`` (else ``sa``) and the distances a − |y0|,
-    a − |x0| from the planes through (x0, y0) to the contact edge
-    (:mod:`reports.registry.resolution`); None without a contact area."""
+    radius a, the slip zone c < r < a and the distances a − |y0|, a − |x0| from the planes
+    through (x0, y0) to the contact edge (:mod:`reports.registry.resolution`); None
+    without a contact area.
+
+    The zones are the reference's, never the solver's under test alone: a closed form
+    ``sb`` (``closed``) states them (:func:`zones`); where it states none, and between two
+    solvers, they are the union of both solvers' — the larger contact radius, the smaller
+    stick radius — so a solver that reports a narrower slip zone than the other (or none)
+    cannot take its own rows out of the gate.  ``coupled``: friction between dissimilar
+    materials, where the stick radius also sets the pressure peak's floor
+    (:mod:`reports.registry.resolution`)."""
     h = max(spacing(sa.x), spacing(sa.y), spacing(sb.x), spacing(sb.y), cell)
-    area = next((v for v in (scalar(sb, "contact_area"), scalar(sa, "contact_area"))
-                 if math.isfinite(v) and v > 0), math.nan)
-    if not (math.isfinite(area) and h > 0):
+    (a_a, c_a), (a_b, c_b) = zones(sa), zones(sb)
+    a = a_b if closed and math.isfinite(a_b) else max(
+        (v for v in (a_a, a_b) if math.isfinite(v)), default=math.nan)
+    if not (math.isfinite(a) and h > 0):
         return None
-    stick = next((v for v in (scalar(sb, "stick_area"), scalar(sa, "stick_area"))
-                  if math.isfinite(v)), 0.0)
-    a, c = math.sqrt(area / math.pi), math.sqrt(max(stick, 0.0) / math.pi)
+    c = c_b if closed and math.isfinite(c_b) else min(
+        (v for v in (c_a, c_b) if math.isfinite(v)), default=0.0)
     return Resolution(contact=a / h, slip=max(a - c, 0.0) / h,
-                      inset_xz=(a - abs(y0)) / h, inset_yz=(a - abs(x0)) / h)
+                      inset_xz=(a - abs(y0)) / h, inset_yz=(a - abs(x0)) / h,
+                      stick=c / h if coupled else math.inf)
+
+
+def zones(step: StepResult) -> tuple[float, float]:
+    """(contact radius, stick radius) a step states: √(A/π) of its ``contact_area`` (NaN
+    without a contact) and of its ``stick_area``, else its ``stick_radius`` (a closed form
+    that bounds the stick zone without stating its area, :mod:`analytic.spence`); NaN
+    where it states none."""
+    area = scalar(step, "contact_area")
+    a = math.sqrt(area / math.pi) if math.isfinite(area) and area > 0 else math.nan
+    stick = scalar(step, "stick_area")
+    c = math.sqrt(max(stick, 0.0) / math.pi) if math.isfinite(stick) else \
+        scalar(step, "stick_radius")
+    return a, c
 
 
 def compare_point(case: Case, results: Mapping[str, RunResult]) -> pd.DataFrame:

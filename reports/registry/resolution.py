@@ -5,6 +5,11 @@ lives in a zone a few cells wide is not a number a grid of that size gives to it
 Two lengths of a step set the resolution, counted in the coarser of the pair's cells
 (the sample spacing, or the FEM's element): the contact radius a and the width of the
 slip zone, a − c (c the stick radius; the whole radius in full sliding and gross slip).
+Both are the reference's (:func:`reports.compare.point.step_resolution`): a closed form's
+own, which it states (Cattaneo–Mindlin's c, Spence's (SP1) bound, none in full sliding),
+else the union of the two solvers' zones (the larger contact radius, the smaller stick
+radius) — never the solver's under test alone, so a solver that reports no slip zone
+where there is one is judged on its tractions, not exempted by its own zone.
 A quantity whose zone spans fewer cells than its floor is compared and shown, not gated,
 with the reason; its companions stay gated — the stick radius (``stick_area``), the
 contact radius and area, the pressure, the stresses — so a solver cannot hide a defect
@@ -37,6 +42,12 @@ Floors, measured with the half-space solver against the closed forms on generate
   it judges: what the coarser element does to the narrow worn annulus is what the probe
   measures (it predicts the FEM's distance in the wear, ``benchmarks/README.md``, "The
   resolution probe"), and the floor is left to judge the probing solver's own grid;
+- the pressure's maximum (``p_max``, ``p_n`` max) where friction couples dissimilar
+  materials (Dundurs' β ≠ 0): a stick radius of 5 cells — the pressure peaks in the
+  stick disc, at a cusp of the self-similar solution, and becomes singular at the centre
+  as the disc shrinks to nothing in full slip (docs/formulation.md §2.9), so a grid
+  holds the peak only where the disc spans cells (``benchmarks/README.md``, "Spence's
+  compression, exact"); its L2 norm, the load and the contact radius stay gated;
 - the σ_VM planes (``vm_xz``, ``vm_yz``): the plane one cell inside the contact edge,
   a − |y0| for the xz plane through y0 (a − |x0| for the yz plane) — a plane off the
   centre within a cell of the edge crosses the contact where its discretised edge
@@ -61,6 +72,9 @@ class Resolution:
     slip: float
     inset_xz: float = math.inf
     inset_yz: float = math.inf
+    #: the stick radius where the pressure peaks in the stick disc: friction between
+    #: dissimilar materials (module doc); inf elsewhere
+    stick: float = math.inf
 
 
 #: quantity (all its metrics) or ``<quantity>_<metric>`` -> the lengths and the cells each
@@ -78,8 +92,10 @@ FLOORS: dict[str, tuple[tuple[str, float], ...]] = {
     "energy": (("slip", 5.0), ("contact", 8.0)),
     "vm_xz": (("inset_xz", 1.0),),
     "vm_yz": (("inset_yz", 1.0),),
+    "p_max": (("stick", 5.0),),
+    "p_n_max": (("stick", 5.0),),
 }
-_NAMES = {"slip": "slip zone", "contact": "contact radius",
+_NAMES = {"slip": "slip zone", "contact": "contact radius", "stick": "stick radius",
           "inset_xz": "distance from the xz plane to the contact edge",
           "inset_yz": "distance from the yz plane to the contact edge"}
 

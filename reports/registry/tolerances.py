@@ -39,7 +39,12 @@ pressure_peak     excess              (max p_n − p_max) / p_max of each solver
 Metrics, with A the first and B the second (reference) solver of the pair:
 ``l2`` = ‖A − B‖₂ / ‖B‖₂ and ``max`` = max|A − B| / max|B| on common sample points (for
 ``p_x`` and ``p_y`` the denominators are the norms of B's whole tangential traction
-|p_t| = √(p_x² + p_y²), so a component that is nearly zero in both is not inflated; for
+|p_t| = √(p_x² + p_y²), so a component that is nearly zero in both is not inflated, and
+where B carries no tangential traction at all they are μ p0 (the largest traction the
+contact can carry, :func:`reports.compare.metrics.tangential_scale`; p0 without
+friction), so that a traction that should not be there, or one that is missing from B,
+is measured on its own size and not on p0 (at μ = 0.04 the whole traction is 4 % of p0);
+for
 ``wear_a`` or ``wear_b`` where B wears only the other body, those of B's whole wear);
 max norms leave out the *edge band*, the sample points within one cell of either
 solver's contact boundary (on the planes: within one cell, the coarser sample spacing,

@@ -162,9 +162,11 @@ def _bool_column(frame: pd.DataFrame, col: str, *, blank: bool) -> None:
 
 
 def read_csv(path: Path, *, required: Iterable[str] = (), text: Iterable[str] = (),
-             numeric: Iterable[str] = (), integer: Iterable[str] = ()) -> pd.DataFrame:
+             numeric: Iterable[str] = (), integer: Iterable[str] = (),
+             boolean: Iterable[str] = ()) -> pd.DataFrame:
     """A CSV table with the ``required`` columns; ``text`` columns as str (blank ''),
-    ``numeric`` (present ones) as float, ``integer`` (present ones) as int."""
+    ``numeric`` (present ones) as float, ``integer`` (present ones) as int, ``boolean``
+    (present ones) True/False, none blank."""
     frame = pd.read_csv(path, dtype={c: object for c in text}, encoding="utf-8")
     missing = [c for c in required if c not in frame.columns]
     if missing:
@@ -176,6 +178,9 @@ def read_csv(path: Path, *, required: Iterable[str] = (), text: Iterable[str] = 
     for c in integer:
         if c in frame.columns:
             _integer_column(frame, c)
+    for c in boolean:
+        if c in frame.columns:
+            _bool_column(frame, c, blank=False)
     return frame
 
 
@@ -253,9 +258,9 @@ def gated(metrics: pd.DataFrame) -> pd.Series:
 
 def worst(metrics: pd.DataFrame) -> pd.DataFrame:
     """Per (pair, quantity, metric): the row of the largest value over its tolerance (a
-    value that is not a number counts as the largest), the worst the report shows of a
-    gated quantity."""
-    margin = metrics["value"].fillna(math.inf) / metrics["tolerance"]
+    value or a tolerance that is not a number counts as the largest), the worst the
+    report shows of a gated quantity."""
+    margin = _largest_first(metrics["value"] / metrics["tolerance"])
     idx = margin.groupby([metrics["pair"], metrics["quantity"], metrics["metric"]],
                          sort=False).idxmax()
     return metrics.loc[idx]
@@ -263,14 +268,22 @@ def worst(metrics: pd.DataFrame) -> pd.DataFrame:
 
 def ungated(metrics: pd.DataFrame) -> pd.DataFrame:
     """Per (pair, quantity, metric) of the rows that are not gated: the row of the
-    largest value, with ``rows`` (how many there are) and its ``note`` (why)."""
+    largest value (one that is not a number counts as the largest), with ``rows`` (how
+    many there are) and its ``note`` (why)."""
     off = metrics[~gated(metrics)]
     if off.empty:
         return off.assign(rows=pd.Series(dtype=int))
     keys = ["pair", "quantity", "metric"]
-    worst = off.loc[off.groupby(keys, sort=False)["value"].idxmax()]
+    value = _largest_first(off["value"])
+    worst = off.loc[value.groupby([off[k] for k in keys], sort=False).idxmax()]
     return worst.assign(rows=off.groupby(keys, sort=False)["value"].transform("size")
                         .loc[worst.index])
+
+
+def _largest_first(values: pd.Series) -> pd.Series:
+    """``values`` as floats with NaN as +inf: the order in which a worst row is picked,
+    where a value that is not a number is the worst a row can have."""
+    return values.astype(float).fillna(math.inf)
 
 
 def read_table(path: Path) -> pd.DataFrame:
