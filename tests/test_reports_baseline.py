@@ -41,3 +41,58 @@ def test_baseline_update_and_drift(tmp_path, monkeypatch, capsys):
     assert main(["gate", "--out", str(out), "--baseline", str(base), "--drift", "1e-4"]) == 1
     assert "DRIFT small analytic [] step 0: baseline row missing from the results" in \
         capsys.readouterr().out
+
+
+def test_a_row_that_leaves_the_gate_fails_the_baseline(tmp_path, monkeypatch, capsys):
+    """Issue 73, point 4: the baselines hold which metric rows are gated; a change that
+    takes a gated row out of the gate (here a declaration in the case file, as any rule
+    that ungates rows would) fails ``gate --baseline``, naming the row and its reason, with
+    every key number unmoved; a row gated anew does not."""
+    from test_cli_run import HERTZ
+
+    fakes.use(monkeypatch, ic="solve_ic", analytic="solve_exact")
+    case, out, base = write_case(tmp_path), tmp_path / "res", tmp_path / "baselines"
+    run = ["run", "--no-progress", str(case), "--out", str(out)]
+    assert main(run) == 0
+    assert main(["gate", "--out", str(out), "--update-baseline", str(base)]) == 0
+    rows = pd.read_csv(base / "gated" / "small.csv", keep_default_na=False)
+    assert list(rows.columns) == ["param", "step", "pair", "quantity", "metric", "gated",
+                                  "reason"]
+    metrics = pd.read_csv(out / "small" / "metrics.csv")
+    assert len(rows) == len(metrics) and rows["gated"].sum() == (metrics["status"] ==
+                                                                 "gated").sum()
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out), "--baseline", str(base)]) == 0
+
+    write_case(tmp_path, HERTZ + '\n[not_converged]\np_max = "seeded: ungated"\n')
+    assert main(run) == 0
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out)]) == 0  # the plain gate cannot see it
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out), "--baseline", str(base)]) == 1
+    lines = [ln for ln in capsys.readouterr().out.splitlines() if ln.startswith("DRIFT")]
+    assert lines and all(" p_max rel: gated in the baseline " in ln for ln in lines), lines
+    assert all(ln.endswith("not gated now (declared)") for ln in lines), lines
+    assert any(" ic-analytic p_max " in ln for ln in lines)
+
+    # the baseline written now holds the row as not gated: the row gated anew passes
+    assert main(["gate", "--out", str(out), "--update-baseline", str(base)]) == 0
+    write_case(tmp_path)
+    assert main(run) == 0
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out), "--baseline", str(base)]) == 0
+
+
+def test_a_baseline_without_its_gated_rows_fails(tmp_path, monkeypatch, capsys):
+    """A baseline directory written before the gated rows were held (no ``gated/``) fails
+    ``gate --baseline`` with how to write them, rather than passing unseen."""
+    import shutil
+
+    fakes.use(monkeypatch, ic="solve_ic", analytic="solve_exact")
+    case, out, base = write_case(tmp_path), tmp_path / "res", tmp_path / "baselines"
+    assert main(["run", "--no-progress", str(case), "--out", str(out)]) == 0
+    assert main(["gate", "--out", str(out), "--update-baseline", str(base)]) == 0
+    shutil.rmtree(base / "gated")
+    capsys.readouterr()
+    assert main(["gate", "--out", str(out), "--baseline", str(base)]) == 1
+    assert "DRIFT small: no baseline of its gated rows" in capsys.readouterr().out

@@ -2,10 +2,15 @@
 of new results from them.
 
 ``contact-vv gate --update-baseline DIR`` writes ``DIR/<case>.csv`` (one row per case,
-solver, sweep point and output step; the columns of :data:`KEYS`) from the results;
-``contact-vv gate --baseline DIR`` fails on any key number that drifted from its baseline
-by more than ``--drift`` (relative, default 1e-6), on a baseline row missing from the
-results and on a result row or case missing from the baselines.  A baseline without rows
+solver, sweep point and output step; the columns of :data:`KEYS`) and
+``DIR/gated/<case>.csv`` (one row per metric row: :data:`ROW_INDEX`, whether it is gated
+and, when it is not, its reason, :func:`reports.render.reasons.reason_of`) from the
+results; ``contact-vv gate --baseline DIR`` fails on any key number that drifted from its
+baseline by more than ``--drift`` (relative, default 1e-6), on a baseline row missing
+from the results, on a result row or case missing from the baselines, and on a metric
+row gated in the baseline that the results no longer gate or no longer hold (a change
+that takes rows out of the gate is a regression like a drifted number; a row gated
+anew is not).  A baseline without rows
 or with an infinite number is refused (blank is a number a solver does not give).
 Updating is always explicit, and never into the results directory or over a file that
 is not a baseline.
@@ -20,13 +25,17 @@ import numpy as np
 import pandas as pd
 
 from reports.registry.errors import UserError
-from reports.store.readers import DamagedResult, Malformed, read_csv, read_result
+from reports.render.reasons import reason_of
+from reports.store.readers import DamagedResult, Malformed, gated, read_csv, read_result
 from reports.store.results import Scan
 
 INDEX = ["case", "solver", "param", "step"]
 KEYS = ["P", "p_max", "a_x", "a_y", "contact_area", "stick_area", "w_max", "wear_volume",
         "vm_max", "vm_max_x", "vm_max_z", "vm_max_below"]
 DEFAULT_DRIFT = 1e-6
+#: the sub-folder of a baseline directory holding each case's gated rows, and their index
+GATED_DIR = "gated"
+ROW_INDEX = ["param", "step", "pair", "quantity", "metric"]
 
 
 def key_numbers(results: Scan) -> dict[str, pd.DataFrame]:
@@ -37,6 +46,21 @@ def key_numbers(results: Scan) -> dict[str, pd.DataFrame]:
         s["case"] = case.name
         cols = INDEX + [k for k in KEYS if k in s.columns]
         out[case.name] = s[cols].sort_values(INDEX, kind="stable").reset_index(drop=True)
+    return out
+
+
+def gated_rows(results: Scan) -> dict[str, pd.DataFrame]:
+    """Per case directory: each metric row's :data:`ROW_INDEX`, ``gated`` and, for a row
+    that is not, its ``reason``."""
+    out = {}
+    for case in results.complete:
+        m = case.metrics
+        on = gated(m).to_numpy(bool)
+        notes = m["note"] if "note" in m.columns else pd.Series("", index=m.index)
+        frame = m[ROW_INDEX].assign(
+            param=m["param"].fillna("").astype(str), gated=on,
+            reason=["" if g else reason_of(n) for g, n in zip(on, notes, strict=True)])
+        out[case.name] = frame.sort_values(ROW_INDEX, kind="stable").reset_index(drop=True)
     return out
 
 
@@ -53,24 +77,23 @@ def write(results: Scan, folder: Path, out: Path) -> list[Path]:
     if folder.resolve() == inside or inside in folder.resolve().parents:
         raise UserError(f"--update-baseline {folder}: inside the results directory {out}; "
                         "choose a folder outside it")
-    frames = key_numbers(results)
-    for name in frames:
-        path = folder / f"{name}.csv"
+    files = {folder / f"{name}.csv": (frame, read_baseline)
+             for name, frame in key_numbers(results).items()}
+    files.update({folder / GATED_DIR / f"{name}.csv": (frame, read_gated)
+                  for name, frame in gated_rows(results).items()})
+    for path, (_, parse) in files.items():
         if path.is_symlink() or path.exists() and not path.is_file():
             raise UserError(f"{path} is not a regular file; refusing to replace it")
         if path.exists():
             try:
-                read_result(path, read_baseline)
+                read_result(path, parse)
             except DamagedResult as exc:
                 raise UserError(f"{path} exists and is not a baseline ({exc}); refusing "
                                 "to replace it") from None
-    folder.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for name, frame in frames.items():
-        path = folder / f"{name}.csv"
+    for path, (frame, _) in files.items():
+        path.parent.mkdir(parents=True, exist_ok=True)
         write_csv(path, frame)
-        paths.append(path)
-    return paths
+    return list(files)
 
 
 def read_baseline(path: Path) -> pd.DataFrame:
@@ -94,6 +117,52 @@ def read_baseline(path: Path) -> pd.DataFrame:
     return frame
 
 
+def read_gated(path: Path) -> pd.DataFrame:
+    """One baseline of gated rows: :data:`ROW_INDEX`, ``gated`` (True/False) and
+    ``reason``, one row per metric row."""
+    frame = read_csv(path, required=[*ROW_INDEX, "gated", "reason"],
+                     text=("param", "pair", "quantity", "metric", "reason"),
+                     integer=["step"], boolean=["gated"])
+    if frame.empty:
+        raise Malformed("no rows (a baseline with nothing in it would pass anything)")
+    dup = frame.duplicated(ROW_INDEX)
+    if dup.any():
+        r = frame[dup].iloc[0]
+        raise Malformed(f"two rows for [{r['param']}] step {r['step']} {r['pair']} "
+                        f"{r['quantity']} {r['metric']}")
+    return frame
+
+
+def ungated_since(results: Scan, folder: Path) -> list[str]:
+    """One line per metric row gated in the baselines of gated rows in ``folder`` that
+    the results no longer gate (with its reason now) or no longer hold, and per case of
+    the results without such a baseline."""
+    folder = Path(folder)
+    lines = []
+    for name, current in gated_rows(results).items():
+        path = folder / GATED_DIR / f"{name}.csv"
+        if not path.is_file():
+            lines.append(f"DRIFT {name}: no baseline of its gated rows {path} (write it "
+                         "with `contact-vv gate --update-baseline DIR`)")
+            continue
+        try:
+            base = read_result(path, read_gated)
+        except DamagedResult as exc:
+            raise UserError(f"baseline {exc}") from None
+        was = base[base["gated"].astype(bool)]
+        merged = was.merge(current, on=ROW_INDEX, how="left", suffixes=("", "_now"),
+                           indicator="found")
+        for r in merged.itertuples(index=False):
+            where = (f"DRIFT {name}" + (f" [{r.param}]" if r.param else "")
+                     + f" step {r.step} {r.pair} {r.quantity} {r.metric}: gated in the "
+                     f"baseline {path}, ")
+            if r.found == "left_only":
+                lines.append(where + "missing from the results")
+            elif not bool(r.gated_now):
+                lines.append(where + f"not gated now ({r.reason_now})")
+    return lines
+
+
 def read(folder: Path) -> dict[str, pd.DataFrame]:
     """The baselines in ``folder`` by case; :class:`UserError` if it is not a baseline
     directory (missing, no ``<case>.csv``, or a file that cannot be read as a baseline)."""
@@ -112,7 +181,8 @@ def read(folder: Path) -> dict[str, pd.DataFrame]:
 
 
 def drift(results: Scan, folder: Path, tol: float = DEFAULT_DRIFT) -> list[str]:
-    """One line per key number that drifted beyond ``tol`` and per missing result row.
+    """One line per key number that drifted beyond ``tol``, per missing result row and
+    per metric row gated in the baseline and not now (:func:`ungated_since`).
 
     Drift of a number x against its baseline b: |x − b| / max(|b|, 1e-12 m), m the largest
     |b| of that column in the case (so numbers that should be zero are compared on the
@@ -121,7 +191,7 @@ def drift(results: Scan, folder: Path, tol: float = DEFAULT_DRIFT) -> list[str]:
     folder = Path(folder)
     baselines = read(folder)
     current = key_numbers(results)
-    lines = []
+    lines = ungated_since(results, folder)
     for name in sorted(set(current) - set(baselines)):
         lines.append(f"DRIFT {name}: in the results but no baseline {folder / name}.csv")
     for name, base in baselines.items():

@@ -24,16 +24,14 @@ from typing import TextIO
 
 import pandas as pd
 
-from reports.compare.maxima import EDGE_NOTE, SURFACE_NOTE
-from reports.compare.metrics import KINK_NOTE
 from reports.registry import solvers
 from reports.registry.errors import RunFailed, UserError
 from reports.registry.tolerances import UNCERTAINTY
+from reports.render.reasons import reason_of
 from reports.render.threshold_gate import threshold_gate
 from reports.store.layout import METRICS, THRESHOLDS
 from reports.store.readers import gated, ungated
 from reports.store.results import CaseResults, Scan, not_converged, scan
-from reports.studies import probe
 from reports.studies.registry import STUDIES
 
 _SHOW = ["case", "param", "step", "pair", "oracle", "quantity", "metric", "value", "tolerance",
@@ -169,22 +167,6 @@ def stale_case_file(mf: dict) -> bool:
 
     path = Path(str(mf.get("case_file", "")))
     return path.is_file() and sha256_file(path) != mf.get("case_sha256")
-
-
-#: why a row is shown and not gated, by the start of its note (the notes' own texts:
-#: reports.registry.tolerances, reports.registry.resolution, reports.compare.point,
-#: reports.studies.gridstudy, reports.studies.probe), as the gate's per-case line names
-#: them
-REASONS = (("declared: ", "declared"), ("not resolved", "below a resolution floor"),
-           (KINK_NOTE, "stick band"), (EDGE_NOTE, "edge band"),
-           (SURFACE_NOTE, "maximum on the surface"), ("grid study", "grid study"),
-           ("jump study", "jump study"), (probe.NOTE, "resolution probe"))
-
-
-def reason_of(note: str) -> str:
-    """The short reason of a not-gated row's note (:data:`REASONS`; 'other')."""
-    note = str(note)
-    return next((label for start, label in REASONS if note.startswith(start[:40])), "other")
 
 
 def case_line(case: CaseResults) -> str:
