@@ -43,6 +43,7 @@ from __future__ import annotations
 
 import math
 
+from hypothesis import assume
 from hypothesis import strategies as st
 
 KINDS = ("hertz", "dissimilar", "partial_slip", "sliding", "pin", "fretting")
@@ -204,3 +205,49 @@ def user_case(draw: st.DrawFn, kinds: tuple[str, ...] = KINDS, fem: bool = False
             f"[materials.b]\nE = {mat_b[0]!r}\nnu = {mat_b[1]!r}\n{body_b}"
             f"[geometry]\nR = {R!r}\n[grid]\n{grid}{friction}"
             f"[load]\n{load}{extra}[stress]\n{stress}")
+
+
+def dundurs_beta(a: tuple[float, float], b: tuple[float, float]) -> float:
+    """Dundurs' β of materials a, b = (E, ν) (docs/formulation.md §2.8)."""
+    ga, gb = a[0] / (2 * (1 + a[1])), b[0] / (2 * (1 + b[1]))
+    return 0.5 * ((1 - 2 * a[1]) / ga - (1 - 2 * b[1]) / gb) / ((1 - a[1]) / ga
+                                                               + (1 - b[1]) / gb)
+
+
+@st.composite
+def compression_case(draw: st.DrawFn, tangential: bool | None = None) -> str:
+    """A valid case of frictional contact between dissimilar materials across Dundurs'
+    range (issue 73, point 6): |β| ≤ 0.5 through ν of each body −0.9–0.499, the moduli
+    70–400 GPa and their ratio 1/1000–1000 (rigid-on-soft pairs both ways; auxetic pairs
+    beyond |β| = 0.5 are left out), μ 0.01–1 (log-uniform), R 5–200 mm,
+    P 1–300 N; Spence's compression (the normal load or the approach held) or, with
+    ``tangential`` (drawn when None), a partial-slip tangential load 0.1–0.9 μP at any
+    angle after it, which no closed form covers (the half-space solver's exact relations
+    compare it); the grid 4–10 cells per contact radius, its half-width 1.3–2.2 contact
+    radii; the stress planes through the centre, 1.5 contact radii deep, in either body."""
+    R = draw(_log_uniform(5.0, 200.0))
+    P = draw(_log_uniform(1.0, 300.0))
+    E_a = draw(st.floats(70e3, 400e3))
+    mat_a = (E_a, draw(st.floats(-0.9, 0.499)))
+    mat_b = (E_a * draw(_log_uniform(1e-3, 1e3)), draw(st.floats(-0.9, 0.499)))
+    assume(abs(dundurs_beta(mat_a, mat_b)) <= 0.5)  # beyond, only auxetic pairs
+    a0 = hertz_radius(R, P, mat_a, mat_b)
+    mu = draw(_log_uniform(0.01, 1.0))
+    load = f"P = {P!r}\n" if draw(st.booleans()) else f"approach = {a0**2 / R!r}\n"
+    if tangential is None:
+        tangential = draw(st.integers(0, 3)) == 0
+    if tangential:
+        q, angle = draw(st.floats(0.1, 0.9)), draw(st.floats(0.0, 2 * math.pi))
+        load = (f"P = {P!r}\nQx = {q * mu * P * math.cos(angle)!r}\n"
+                f"Qy = {q * mu * P * math.sin(angle)!r}\n")
+    cells = draw(st.floats(4.0, 10.0))
+    L = 2.0 * a0 * draw(st.floats(1.3, 2.2))
+    n = max(min(round(L / (a0 / cells)), 81), 9)
+    body = draw(st.sampled_from(["a", "b"]))
+    return ('kind = "static"\n'
+            f"[materials.a]\nE = {mat_a[0]!r}\nnu = {mat_a[1]!r}\n"
+            f"[materials.b]\nE = {mat_b[0]!r}\nnu = {mat_b[1]!r}\n"
+            f"[geometry]\nR = {R!r}\n[grid]\nLx = {L!r}\nnx = {n}\n"
+            f"[friction]\nmu = {mu!r}\n[load]\n{load}"
+            f"[stress]\ndepth = {1.5 * a0!r}\nnz = {draw(st.integers(11, 21))}\n"
+            f'body = "{body}"\n')

@@ -16,7 +16,7 @@ import re
 import pandas as pd
 import pytest
 from case_generator import FEM_KINDS, user_case
-from hypothesis import given, settings
+from hypothesis import HealthCheck, given, settings
 
 from reports.cli import main
 
@@ -77,3 +77,46 @@ def test_the_fem_passes_the_gate_on_cases_no_closed_form_covers(index, tmp_path)
     metrics = pd.read_csv(out / "user" / "metrics.csv")
     gated = metrics[(metrics["status"] == "gated") & (metrics["pair"] == "ic-fem")]
     assert gated["quantity"].isin(["p_n", "P", "p_max"]).any(), text
+
+
+#: draws of the Dundurs range with the FEM (issue 73: at least 12)
+DUNDURS_DRAWS = 12
+
+
+@functools.lru_cache(maxsize=1)
+def dundurs_draws(count: int = DUNDURS_DRAWS) -> tuple[str, ...]:
+    """``count`` frictional contacts of dissimilar pairs across Dundurs' range
+    (:func:`case_generator.compression_case`: Spence's compression, a quarter of them
+    with a tangential load after it), kept and spread as :func:`draws` does."""
+    from case_generator import compression_case
+
+    texts: list[str] = []
+
+    @settings(max_examples=10 * count, derandomize=True, database=None, deadline=None,
+              suppress_health_check=list(HealthCheck))
+    @given(text=compression_case())
+    def collect(text: str) -> None:
+        texts.append(text)
+
+    collect()
+    seen: set[tuple] = set()
+    kept = [t for t in texts if not (_physics(t) in seen or seen.add(_physics(t)))]
+    return tuple(kept[(k + 1) * len(kept) // (count + 1)] for k in range(count))
+
+
+@pytest.mark.full
+@pytest.mark.parametrize("index", range(DUNDURS_DRAWS), ids=lambda i: f"draw{i:02d}")
+def test_the_fem_passes_the_gate_across_the_dundurs_range(index, tmp_path):
+    """Issue 73: the half-space solver, the FEM and the coupled self-similar solution
+    (where there is no tangential load) agree within the gate on frictional contacts of
+    dissimilar pairs across Dundurs' range, ic–fem rows of the pressure gated."""
+    text = dundurs_draws()[index]
+    path = tmp_path / "user.toml"
+    path.write_text(text)
+    out = tmp_path / "res"
+    assert main(["run", str(path), "--solver", "ic,fem,analytic", "--quick",
+                 "--no-progress", "--out", str(out)]) == 0, text
+    assert main(["gate", "--out", str(out)]) == 0, text
+    metrics = pd.read_csv(out / "user" / "metrics.csv")
+    gated = metrics[(metrics["status"] == "gated") & (metrics["pair"] == "ic-fem")]
+    assert gated["quantity"].isin(["p_n", "P"]).any(), text

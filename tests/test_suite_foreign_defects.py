@@ -71,6 +71,15 @@ def _step(step):
     if DEFECT == "traction_scaled":
         for k in ("p_x", "p_y"):
             s[k] = 1.03 * s[k]
+    elif DEFECT == "traction_halved":
+        for k in ("p_x", "p_y"):
+            s[k] = 0.5 * s[k]
+    elif DEFECT.startswith("no_slip_zone"):  # every contact point reported stuck
+        from cases.result import OPEN, STICK
+
+        s["state"] = np.where(s["state"] == OPEN, OPEN, STICK).astype(s["state"].dtype)
+        step.scalars["stick_area"] = step.scalars["contact_area"]
+        step.scalars["slip_area"] = 0.0
     elif DEFECT == "pressure_scaled":
         s["p_n"] = 1.03 * s["p_n"]
     elif DEFECT == "p_x_sign":
@@ -119,6 +128,11 @@ DEFECTS = {
     "wear_axes_turned": ("pin_on_disk_orthotropic", "the wear axes turned by 90°"),
     "friction_scaled": ("sliding_friction", "μ 5 % high"),
     "traction_scaled": ("sliding_friction", "the tangential tractions 3 % high"),
+    "traction_halved": ("spence", "the tangential tractions half their size (μ = 0.04)"),
+    "no_slip_zone": ("cattaneo_mindlin", "no slip zone reported: every contact point "
+                     "stuck, the stick area the contact's"),
+    "no_slip_zone_compressed": ("spence", "no slip zone reported under Spence's "
+                                "compression: every contact point stuck"),
     "pressure_scaled": ("hertz", "the pressure field 3 % high (its scalars not)"),
     "p_x_sign": ("sliding_friction", "p_x of the wrong sign"),
     "p_y_parity": ("pin_on_disk_orthotropic", "p_y mirrored in y: the wrong parity"),
