@@ -129,8 +129,9 @@ def compression(nu: float, K: float, mu: float, n: int = N_RINGS) -> Compression
     inside the friction limit, |q| ≤ μ p (a larger one needs the √-singular traction of a
     stick zone too wide; a smaller one slips against its traction): a bisection over the
     nodes.  The slip annulus must then slip against its traction at every node
-    (:class:`SlipAgainstFriction` if not).  Exact in the limit of many nodes: c/a agrees with CONTACT's published example
-    (β = 1/2, μ = 0.2986: c/a = 1/2) and the pressure with Hertz's at K = 0."""
+    (:class:`SlipAgainstFriction` if not).  Exact in the limit of many nodes: c/a agrees
+    with CONTACT's published example (β = 1/2, μ = 0.2986: c/a = 1/2) and the pressure
+    with Hertz's at K = 0."""
     ops = axisymmetric.ring_operators(n)
     rho, c = ops.nodes, (1.0 - nu) / np.pi
     sigma = -math.copysign(1.0, K)

@@ -416,3 +416,11 @@ def test_the_slip_zone_of_a_resolution_floor_is_the_references():
     assert step_resolution(stuck, spence, 0.0, closed=True).slip == pytest.approx(0.25 / h)
     # the contact radius too: the larger of the two between solvers
     assert step_resolution(step(0.5, 0.5), right, 0.0).contact == pytest.approx(1.0 / h)
+    # a reference without any tangential traction has no slip zone to resolve
+    none = step(1.0, 1.0)
+    none.surface.update(p_x=np.zeros((x.size, x.size)), p_y=np.zeros((x.size, x.size)))
+    assert step_resolution(right, none, 0.0).slip == math.inf
+    # the pressure peak's stick floor (coupled contacts) takes the larger stick disc
+    assert step_resolution(step(1.0, 0.1), right, 0.0, coupled=True).stick == \
+        pytest.approx(0.8 / h)
+    assert step_resolution(right, right, 0.0).stick == math.inf

@@ -455,6 +455,14 @@ def test_the_verdict_flips_at_the_tolerance(kind, pair_kind, source, tmp_path):
 NARROW_SLIP_CASE = SLIP_CASE.with_changes(
     load=dataclasses.replace(SLIP_CASE.load, Qx=0.1 * 0.3 * SLIP_CASE.load.P))
 
+#: Spence's compression of a rigid-on-soft pair (β = −0.375) at μ = 0.05: a stick disc
+#: under a cell, so the pressure's peak is under its floor (issue 73)
+COUPLED_CASE = SLIP_CASE.with_changes(
+    b=dataclasses.replace(SLIP_CASE.b, E=2100.0, nu=0.2),
+    friction=dataclasses.replace(SLIP_CASE.friction, mu1=0.05, mu2=0.05),
+    load=dataclasses.replace(SLIP_CASE.load, Qx=None),
+    grid=dataclasses.replace(SLIP_CASE.grid, Lx=2.4, Ly=2.4, nx=41, ny=41))
+
 #: not-converged rule -> (the case, the row it exempts, words of its note, the
 #: companions that stay gated)
 RULES = {
@@ -466,6 +474,9 @@ RULES = {
              {("p_n", "l2"), ("loop_q", "max")}),
     "resolution": (NARROW_SLIP_CASE, ("p_x", "l2"), "slip zone",
                    {("stick_area", "cells"), ("p_n", "l2"), ("a_x", "cells")}),
+    "stick disc": (COUPLED_CASE, ("p_max", "rel"), "stick radius",
+                   {("p_n", "l2"), ("P", "rel"), ("contact_area", "cells"),
+                    ("stick_area", "cells")}),
 }
 
 
@@ -498,5 +509,28 @@ def test_each_not_converged_rule_shows_its_row_and_gates_the_companions(rule):
     law = {(LAW, EXCESS)} if rule == "resolution" else set()
     assert failed == law, f"{rule}: fails {sorted(failed)}"
     assert all(rows[c][2] == "gated" for c in companions), {c: rows[c][2] for c in companions}
-    if rule != "resolution":  # without the rule the injection fails the row
+    if rule not in ("resolution", "stick disc"):  # without the rule it fails the row
         assert not _rows(case, pair, tested, good)[kind][3]
+
+
+def test_a_traction_the_reference_lacks_is_measured_on_mu_p0():
+    """Issue 73, point 2: against a reference without tangential traction (Hertz with
+    friction and no tangential load, μ = 0.04), a uniform traction ε μ p0 over the contact
+    reads ε in both norms, and the verdict flips at the tolerance: at μ = 0.04 a traction
+    as large as friction allows fails, where on p0 it read 0.04."""
+    case = SLIP_CASE.with_changes(
+        friction=dataclasses.replace(SLIP_CASE.friction, mu1=0.04, mu2=0.04),
+        load=dataclasses.replace(SLIP_CASE.load, Qx=None))
+    good = reference(case)
+    assert not np.any(_last(good).surface["p_x"])
+    _, p0 = case.hertz_scales
+    pair = "ic-analytic"
+    for metric in ("l2", "max"):
+        tol = _expected_tolerance(case, pair, "p_x", metric)
+        for k in (0.97, 1.03):
+            tested = copy.deepcopy(good)
+            s = _last(tested).surface
+            s["p_x"] = np.where(s["p_n"] > 0, k * tol * 0.04 * p0, 0.0)
+            value, _, status, ok, _ = _rows(case, pair, tested, good)[("p_x", metric)]
+            assert value == pytest.approx(k * tol, rel=1e-9) and status == "gated"
+            assert ok == (k < 1), (metric, k, value, tol)

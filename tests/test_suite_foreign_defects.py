@@ -55,6 +55,12 @@ def _case(case):
     a, b, f = case.a, case.b, case.friction
     if DEFECT == "E_b_from_a":
         return case.with_changes(b=dataclasses.replace(b, E=a.E, nu=a.nu))
+    if DEFECT == "coupling_dropped":  # both bodies the pair's G and nu: K = 0 (Eq. 6)
+        ga, gb = a.E / (2 * (1 + a.nu)), b.E / (2 * (1 + b.nu))
+        G = 2.0 / (1.0 / ga + 1.0 / gb)
+        nu = 0.5 * G * (a.nu / ga + b.nu / gb)
+        same = dataclasses.replace(a, E=2.0 * G * (1.0 + nu), nu=nu)
+        return case.with_changes(a=same, b=dataclasses.replace(b, E=same.E, nu=nu))
     if DEFECT == "friction_axes_turned":
         return case.with_changes(friction=dataclasses.replace(f, beta=f.beta + 20.0))
     if DEFECT == "wear_axes_turned":
@@ -129,6 +135,8 @@ DEFECTS = {
     "friction_scaled": ("sliding_friction", "μ 5 % high"),
     "traction_scaled": ("sliding_friction", "the tangential tractions 3 % high"),
     "traction_halved": ("spence", "the tangential tractions half their size (μ = 0.04)"),
+    "coupling_dropped": ("spence", "the normal-tangential coupling dropped (K = 0: both "
+                         "bodies of the pair's G and nu)"),
     "no_slip_zone": ("cattaneo_mindlin", "no slip zone reported: every contact point "
                      "stuck, the stick area the contact's"),
     "no_slip_zone_compressed": ("spence", "no slip zone reported under Spence's "
