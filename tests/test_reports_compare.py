@@ -424,3 +424,5 @@ def test_the_slip_zone_of_a_resolution_floor_is_the_references():
     assert step_resolution(step(1.0, 0.1), right, 0.0, coupled=True).stick == \
         pytest.approx(0.8 / h)
     assert step_resolution(right, right, 0.0).stick == math.inf
+    full = step(1.0, 0.95)  # a disc that fills the contact: a peak of Hertz's breadth
+    assert step_resolution(full, full, 0.0, coupled=True).stick == math.inf

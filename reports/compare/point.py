@@ -128,6 +128,12 @@ def point_rows(case: Case, results: Mapping[str, RunResult], probed: bool = Fals
     return frame
 
 
+#: a stick disc narrower than this fraction of the contact radius sets the resolution of
+#: the pressure's peak in a coupled frictional contact; a wider one leaves a peak of
+#: Hertz's breadth (reports.registry.resolution)
+PEAK_DISC = 0.9
+
+
 def step_resolution(sa: StepResult, sb: StepResult, cell: float, x0: float = 0.0,
                     y0: float = 0.0, closed: bool = False, coupled: bool = False
                     ) -> Resolution | None:
@@ -160,7 +166,7 @@ def step_resolution(sa: StepResult, sb: StepResult, cell: float, x0: float = 0.0
     slip = max(a - c, 0.0) / h if carries_traction(sb) else math.inf
     return Resolution(contact=a / h, slip=slip,
                       inset_xz=(a - abs(y0)) / h, inset_yz=(a - abs(x0)) / h,
-                      stick=c_peak / h if coupled else math.inf)
+                      stick=c_peak / h if coupled and c_peak < PEAK_DISC * a else math.inf)
 
 
 def carries_traction(step: StepResult) -> bool:

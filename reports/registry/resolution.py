@@ -43,11 +43,13 @@ Floors, measured with the half-space solver against the closed forms on generate
   measures (it predicts the FEM's distance in the wear, ``benchmarks/README.md``, "The
   resolution probe"), and the floor is left to judge the probing solver's own grid;
 - the pressure's maximum (``p_max``, ``p_n`` max) where friction couples dissimilar
-  materials (Dundurs' β ≠ 0): a stick radius of 5 cells — the pressure peaks in the
-  stick disc, at a cusp of the self-similar solution, and becomes singular at the centre
-  as the disc shrinks to nothing in full slip (docs/formulation.md §2.9), so a grid
-  holds the peak only where the disc spans cells (``benchmarks/README.md``, "Spence's
-  compression, exact"); its L2 norm, the load and the contact radius stay gated;
+  materials (Dundurs' β ≠ 0) and the stick disc is narrower than 0.9 of the contact
+  (:data:`reports.compare.point.PEAK_DISC`): a stick radius of 5 cells — the pressure
+  peaks in the stick disc, at a cusp of the self-similar solution, and becomes singular
+  at the centre as the disc shrinks to nothing in full slip (docs/formulation.md §2.9),
+  so a grid holds the peak only where the disc spans cells (``benchmarks/README.md``,
+  "Spence's compression, exact"); a disc that fills the contact leaves a peak as broad
+  as Hertz's; the pressure's L2 norm, the load and the contact radius stay gated;
 - the σ_VM planes (``vm_xz``, ``vm_yz``): the plane one cell inside the contact edge,
   a − |y0| for the xz plane through y0 (a − |x0| for the yz plane) — a plane off the
   centre within a cell of the edge crosses the contact where its discretised edge
