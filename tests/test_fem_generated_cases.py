@@ -67,7 +67,14 @@ def draws(count: int = DRAWS) -> tuple[str, ...]:
 @pytest.mark.parametrize("index", range(DRAWS), ids=lambda i: f"draw{i:02d}")
 def test_the_fem_passes_the_gate_on_cases_no_closed_form_covers(index, tmp_path):
     """Each draw a test, reported, not shrunk (a FEM run is a minute)."""
-    text, tmp = draws()[index], tmp_path
+    text = draws()[index]
+    gated = ic_fem_gated(text, tmp_path)
+    assert gated["quantity"].isin(["p_n", "P", "p_max"]).any(), text
+
+
+def ic_fem_gated(text: str, tmp) -> pd.DataFrame:
+    """The gated ic–fem rows of case file ``text`` run through ``ic,fem,analytic`` in
+    ``tmp``, the gate passing."""
     path = tmp / "user.toml"
     path.write_text(text)
     out = tmp / "res"
@@ -75,8 +82,7 @@ def test_the_fem_passes_the_gate_on_cases_no_closed_form_covers(index, tmp_path)
                  "--no-progress", "--out", str(out)]) == 0, text
     assert main(["gate", "--out", str(out)]) == 0, text
     metrics = pd.read_csv(out / "user" / "metrics.csv")
-    gated = metrics[(metrics["status"] == "gated") & (metrics["pair"] == "ic-fem")]
-    assert gated["quantity"].isin(["p_n", "P", "p_max"]).any(), text
+    return metrics[(metrics["status"] == "gated") & (metrics["pair"] == "ic-fem")]
 
 
 #: draws of the Dundurs range with the FEM (issue 73: at least 12)
@@ -111,12 +117,4 @@ def test_the_fem_passes_the_gate_across_the_dundurs_range(index, tmp_path):
     (where there is no tangential load) agree within the gate on frictional contacts of
     dissimilar pairs across Dundurs' range, ic–fem rows of the pressure gated."""
     text = dundurs_draws()[index]
-    path = tmp_path / "user.toml"
-    path.write_text(text)
-    out = tmp_path / "res"
-    assert main(["run", str(path), "--solver", "ic,fem,analytic", "--quick",
-                 "--no-progress", "--out", str(out)]) == 0, text
-    assert main(["gate", "--out", str(out)]) == 0, text
-    metrics = pd.read_csv(out / "user" / "metrics.csv")
-    gated = metrics[(metrics["status"] == "gated") & (metrics["pair"] == "ic-fem")]
-    assert gated["quantity"].isin(["p_n", "P"]).any(), text
+    assert ic_fem_gated(text, tmp_path)["quantity"].isin(["p_n", "P"]).any(), text
