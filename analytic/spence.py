@@ -63,8 +63,9 @@ def stick_ratio(beta: float, mu: float) -> float:
     return math.tanh(brentq(excess, 1e-12, 40.0, xtol=1e-14))
 
 
-#: ring nodes of the coupled solution (:func:`compression`): p_max, a and the pressure
-#: change by < 2e-4 of Hertz's from 400 to 800 nodes, c/a by < 2e-3 (tests/test_analytic_spence.py)
+#: ring nodes of the coupled solution (:func:`compression`); its convergence to 800 is
+#: held by tests/test_analytic_spence.py (measured: benchmarks/README.md, "Spence's
+#: compression, exact")
 N_RINGS = 400
 
 
