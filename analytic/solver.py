@@ -141,6 +141,7 @@ def compression_step(case: Case) -> StepResult:
         a = math.sqrt(case.load.approach * R / sol.delta)
         P = G * a ** 3 * sol.load / R
     fields.check_grid(case, a, "Spence's compression")
+    hertz_a0, hertz_p0 = case.hertz_scales  # p0 and a0 are Hertz's in every step
     c, unit = sol.k * a, G * a / R
     g = case.grid
     X, Y = np.meshgrid(g.x, g.y, indexing="ij")
@@ -162,9 +163,9 @@ def compression_step(case: Case) -> StepResult:
         p_max=unit * float(sol.p.max()), w_max=0.0, wear_volume=0.0, vm_max=nan,
         vm_max_x=nan, vm_max_y=nan, vm_max_z=nan, stick_area=stick, slip_area=area - stick,
         iterations=0, converged=True, approach=delta,
-        dundurs_beta=spence.dundurs_beta(case), stick_radius=c,
-        stick_radius_uncoupled=spence.stick_ratio(spence.dundurs_beta(case), mu) * a,
-        p0=3.0 * P / (2.0 * math.pi * a * a), a0=a, wall_s=time.perf_counter() - t0)
+        dundurs_beta=case.dundurs_beta, stick_radius=c,
+        stick_radius_uncoupled=spence.stick_ratio(case.dundurs_beta, mu) * a,
+        p0=hertz_p0, a0=hertz_a0, wall_s=time.perf_counter() - t0)
     return StepResult(scalars=scalars, x=g.x.copy(), y=g.y.copy(), surface=surface)
 
 
