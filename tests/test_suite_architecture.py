@@ -129,12 +129,13 @@ def test_external_results_read_files_with_the_cases_package_only():
     assert bad == []
 
 
-def test_the_kratos_plugin_shares_no_solver_code():
-    """kratos_adapter is a second FEM reference (issue 60): its agreement with
-    fem_reference is evidence only if it shares no mesh, contact, kernel or stress code
-    with fem_reference or halfspace (the case model, the result container and the
-    registry's record are the shared pieces)."""
-    plugin = ROOT / "kratos_adapter"
+@pytest.mark.parametrize("package", ["kratos_adapter", "calculix_adapter"])
+def test_the_finite_element_plugins_share_no_solver_code(package):
+    """kratos_adapter and calculix_adapter are second FEM references (issues 60, 74):
+    their agreement with fem_reference is evidence only if they share no mesh, contact,
+    kernel or stress code with fem_reference, halfspace or analytic (the case model, the
+    result container and the registry's record are the shared pieces)."""
+    plugin = ROOT / package
     bad = []
     for path in sorted(plugin.rglob("*.py")):
         for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
@@ -203,7 +204,8 @@ def test_layers_of_fem_reference(name):
 #: what a test module's name starts with: the package (room) it holds, or ``suite`` for
 #: the product as a whole (the chain, the gate's error rates, the docs, determinism)
 TEST_ROOMS = ("analytic", "cases", "fem", "halfspace", "reports", "cli", "tamaas",
-              "benchmarks", "suite", "external", "contactmechanics", "kratos")
+              "benchmarks", "suite", "external", "contactmechanics", "kratos",
+              "calculix")
 
 
 def test_every_test_module_names_its_room():
@@ -226,7 +228,7 @@ def test_no_module_over_400_lines_no_function_over_80():
     long = []
     for package in ("halfspace", "fem_reference", "analytic", "cases", "reports",
                     "tamaas_adapter", "external_results", "contactmechanics_adapter",
-                    "kratos_adapter"):
+                    "kratos_adapter", "calculix_adapter"):
         for path in sorted((root / package).rglob("*.py")):
             text = path.read_text()
             if text.count("\n") > 400:

@@ -287,7 +287,7 @@ def test_every_quoted_benchmarks_title_resolves():
     starts = [line.lstrip("#").strip() if line.startswith("#") else line.removeprefix("**")
               for line in lines]
     files = project_files() + [p for d in ("tamaas_adapter", "contactmechanics_adapter",
-                                           "kratos_adapter")
+                                           "kratos_adapter", "calculix_adapter")
                                for p in sorted((ROOT / d).rglob("*.py"))]
     quotes, problems = 0, []
     for path in files:

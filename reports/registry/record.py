@@ -78,6 +78,9 @@ class SolverRecord:
     #: keyword arguments every entry point of the package is called with (an external
     #: result set's ``name``)
     options: Mapping[str, Any] = field(default_factory=dict)
+    #: why the solver cannot run on this machine (a program it drives is missing, and
+    #: how to get it), None when it can; checked before any entry point is used
+    requires: Callable[[], str | None] | None = None
 
     def stress_reach(self, case: Case) -> float:
         """:attr:`reach` of ``case``, else its cell (NaN: a closed form's, none)."""
@@ -85,6 +88,9 @@ class SolverRecord:
 
     def entry(self, attr: str) -> Callable:
         """The callable ``attr`` of the package; SolverUnavailable if it cannot load."""
+        reason = self.requires() if self.requires is not None else None
+        if reason:
+            raise SolverUnavailable(f"solver {self.name!r} is not available: {reason}")
         try:
             module = importlib.import_module(self.package)
         except Exception as exc:  # an import error, or any error a plugin raises
