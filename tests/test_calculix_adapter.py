@@ -368,11 +368,16 @@ def test_the_chain_of_the_issue(tmp_path, capsys):
 
 @needs_ccx
 @pytest.mark.full
-@pytest.mark.parametrize("defect", ["mu_high", "stick_slope_soft"])
-def test_the_gate_catches_a_seeded_deck_defect(defect, tmp_path, monkeypatch, capsys):
-    """Seeded in the deck (issue 74): μ 10 % high, and a stick slope 100 times too soft,
-    on one Cattaneo–Mindlin point: the gate fails on calculix rows against every
-    reference."""
+@pytest.mark.parametrize("defect,pairs", [
+    ("mu_high", ("calculix-analytic", "calculix-ic")),
+    ("stick_slope_soft", ("calculix-analytic",)),
+])
+def test_the_gate_catches_a_seeded_deck_defect(defect, pairs, tmp_path, monkeypatch, capsys):
+    """Seeded in the deck (issue 74), on one Cattaneo–Mindlin point: μ 10 % high fails
+    the friction law (an exact law, against every pair), a stick slope 100 times too soft
+    the tangential traction's max norm against the closed form (against the half-space
+    solver, whose budget is the wider, it passes: benchmarks/README.md, "CalculiX through
+    the gates")."""
     if defect == "mu_high":
         real = ccx_model.friction
         monkeypatch.setattr(ccx_model, "friction", lambda case: 1.1 * real(case))
@@ -386,6 +391,6 @@ def test_the_gate_catches_a_seeded_deck_defect(defect, tmp_path, monkeypatch, ca
     assert main(["gate", str(out)]) == 1
     m = pd.read_csv(out / "cm_point" / layout.METRICS)
     failed = m[(m["status"] == "gated") & ~m["passed"]]
-    for pair in ("calculix-analytic", "calculix-ic"):
+    for pair in pairs:
         assert (failed["pair"] == pair).any(), failed
     assert not failed["pair"].str.startswith("ic").any()

@@ -274,3 +274,21 @@ def test_the_solvers_deadlines(name):
         assert deadline.ALLOWANCE_S < d1 < math.inf
         assert d10 - deadline.ALLOWANCE_S == pytest.approx(10 * (d1 - deadline.ALLOWANCE_S))
     assert one.deadline(case, "analytic") == math.inf
+
+
+def test_a_child_process_that_ends_keeps_its_progress(monkeypatch):
+    """A block that runs a program in a child process (the calculix plugin's ccx): when
+    the child ends, its CPU time stays counted (the ended children's, ``os.times``), so
+    the progress window does not see the process's CPU time fall and call the block hung
+    (found on a 318 s ccx run, stopped as "-211 s of CPU time in the last 120 s")."""
+    import subprocess
+    import sys
+
+    monkeypatch.setattr(deadline, "TICK_S", 0.05)
+    monkeypatch.setattr(deadline, "STALL_S", 1.0)
+    burn = "import time\nt = time.process_time()\nwhile time.process_time() - t < {}: pass"
+    with deadline.deadline(math.inf, "the run"):
+        subprocess.run([sys.executable, "-c", burn.format(1.5)], check=True)
+        t = time.process_time()
+        while time.process_time() - t < 1.5:  # the parent computes on
+            pass

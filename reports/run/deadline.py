@@ -70,8 +70,12 @@ def seconds(estimate_s: float, time_factor: float, slowdown: float = 1.0) -> flo
 
 
 def cpu_seconds() -> float:
-    """CPU time [s] of this process (all threads) and of its live child processes."""
-    spent = time.process_time()
+    """CPU time [s] of this process (all threads) and of its child processes: the live
+    ones', and the ended ones' (``os.times``: a program a solver ran, e.g. the calculix
+    plugin's ccx, whose time would otherwise drop out of the count as it ends, a fall the
+    progress window would read as a hung run)."""
+    ended = os.times()
+    spent = time.process_time() + ended.children_user + ended.children_system
     try:
         import psutil
 
