@@ -59,8 +59,35 @@ def on_face(body: Body, nodal: np.ndarray, field: str, x: np.ndarray, y: np.ndar
 
 
 def slipping(p_n: np.ndarray, p_x: np.ndarray, p_y: np.ndarray, mu: float) -> np.ndarray:
-    """Where a node in contact slips (module doc)."""
-    return (p_n > 0) & (np.hypot(p_x, p_y) >= (1.0 - SLIP_TOL) * mu * p_n)
+    """Where a node of the face's grid (nx, ny) in contact slips: its shear reaches the
+    friction bound, within :data:`SLIP_TOL`, times the coherence of the shear's direction
+    around it.  A node's traction is a positive combination of its support's (the nodal
+    force, :mod:`calculix_adapter.traction`): where every point of the support slips but
+    the direction turns across it (the radial shear of a compression, by the support's
+    angle seen from the centre), the combination's length falls short of μ p_n by the
+    mean resultant of the directions, about 1 − α²/6 for directions spread over ±α.
+    That mean is taken over the node and its neighbours in contact (the support's
+    extremes, so it errs towards slip by at most the same second-order amount; stick
+    nodes next to a slip zone sit well below: a √ kink)."""
+    t = np.hypot(p_x, p_y)
+    contact = p_n > 0
+    unit = np.stack([p_x, p_y], axis=-1) / np.where(t > 0, t, 1.0)[..., None]
+    d = np.where((contact & (t > 0))[..., None], unit, 0.0)
+    total = d.copy()
+    count = contact.astype(float)
+    for axis in (0, 1):
+        for shift in (1, -1):
+            nb = np.roll(d, shift, axis=axis)
+            ok = np.roll(contact, shift, axis=axis)
+            edge = [slice(None)] * 2
+            edge[axis] = 0 if shift == 1 else -1  # no wrap-around
+            nb[tuple(edge)] = 0.0
+            ok = ok.copy()
+            ok[tuple(edge)] = False
+            total += nb
+            count += ok
+    coherence = np.linalg.norm(total, axis=-1) / np.maximum(count, 1.0)
+    return contact & (t >= (1.0 - SLIP_TOL) * coherence * mu * p_n)
 
 
 def tributary(body: Body) -> np.ndarray:

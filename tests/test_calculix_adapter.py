@@ -175,6 +175,40 @@ def test_the_bodies_share_the_gap_and_meet_on_the_profile():
     np.testing.assert_allclose(fa[:, 2], share * mesh.profile(fa[:, 0], fa[:, 1], R))
 
 
+def test_a_node_slips_where_its_support_slips_in_turning_directions():
+    """Radial shear at the bound, μ p e_r, everywhere (a compression's annulus), held at
+    the nodes as the nodal forces hold it: the support's traction weighted by the
+    node's bilinear hat.  The combination's length falls short of μ p_n where the
+    direction turns across the support, and every node still slips; a shear along x
+    at the bound slips, at 0.95 of it sticks."""
+    h, mu = 0.125, 0.3
+    xs = np.arange(0, 9) * h
+    X, Y = np.meshgrid(xs, xs, indexing="ij")
+    s = np.linspace(-h, h, 41)
+    hat = np.outer(1 - np.abs(s) / h, 1 - np.abs(s) / h)
+    SX, SY = np.meshgrid(s, s, indexing="ij")
+    p_n, p_x, p_y = (np.zeros_like(X) for _ in range(3))
+    for i, j in np.ndindex(X.shape):
+        x, y = np.abs(X[i, j] + SX), np.abs(Y[i, j] + SY)  # the mirror planes' images
+        r = np.hypot(x, y)
+        p = np.clip(1.0 - r**2, 0.0, None)
+        w = hat / hat.sum()
+        sx = np.sign(X[i, j] + SX)  # p_x odd in x, p_y odd in y
+        sy = np.sign(Y[i, j] + SY)
+        p_n[i, j] = np.sum(w * p)
+        p_x[i, j] = np.sum(w * mu * p * sx * x / np.where(r > 0, r, 1))
+        p_y[i, j] = np.sum(w * mu * p * sy * y / np.where(r > 0, r, 1))
+    ratio = np.hypot(p_x, p_y) / (mu * np.where(p_n > 0, p_n, np.nan))
+    inner = (np.hypot(X, Y) > 0.2) & (np.hypot(X, Y) < 0.85)
+    short = inner & (ratio < 1 - fields.SLIP_TOL)  # below the bound: turning directions
+    assert short.sum() >= 10
+    slip = fields.slipping(p_n, p_x, p_y, mu)
+    assert slip[inner].all()
+    along = fields.slipping(p_n, mu * p_n, 0 * p_n, mu)
+    below = fields.slipping(p_n, 0.95 * mu * p_n, 0 * p_n, mu)
+    assert along[p_n > 0].all() and not below.any()
+
+
 def test_face_fields_are_bilinear_and_mirrored():
     """On the face's tensor grid a bilinear nodal field is read exactly; the mirror of
     a half model (y ≥ 0) keeps p_x and p_n and turns p_y."""
