@@ -36,11 +36,11 @@ __all__ = ["record", "solve", "supports", "by_default", "estimate", "budget", "m
 #: (quantity, metric) -> the expected error against the exact solution at the element
 #: sizes of the bundled cases (a0/4 and a0/5), each above the largest error measured
 #: there (benchmarks/README.md, "CalculiX through the gates": a grid study of three
-#: element sizes, the penalty's two parameters, Hertz, Cattaneo–Mindlin, Spence, and
-#: against the other solvers on the dissimilar contact); what it does not list, the grid
-#: solvers' budget.  The tractions' and the planes' are those of trilinear elements
-#: a0/4 apart read on a grid four times finer: the exact solution held at the nodes and
-#: interpolated as the plugin does misses itself by as much.
+#: element sizes, the penalty's two parameters, Hertz, Cattaneo–Mindlin, Spence, the
+#: example cases, and against the other solvers on the dissimilar contact); what it
+#: does not list, the grid solvers' budget.  The tractions' and the planes' are those of
+#: trilinear elements a0/4 apart read on a grid four times finer: the exact solution
+#: held at the nodes and interpolated as the plugin does misses itself by as much.
 BUDGET: dict[tuple[str, str], float] = {
     ("P", "rel"): 0.001,
     ("p_max", "rel"): 0.015,
@@ -51,8 +51,8 @@ BUDGET: dict[tuple[str, str], float] = {
     ("p_x", "max"): 0.12,
     ("p_y", "max"): 0.12,
     ("vm_max", "rel"): 0.02,
-    ("vm_xz", "l2"): 0.045,
-    ("vm_yz", "l2"): 0.045,
+    ("vm_xz", "l2"): 0.06,
+    ("vm_yz", "l2"): 0.06,
     ("vm_xz", "max"): 0.22,
     ("vm_yz", "max"): 0.22,
     ("a_x", "cells"): 1.25,

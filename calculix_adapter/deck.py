@@ -124,6 +124,17 @@ def write(a: Body, b: Body, model: Model) -> str:
     if model.mu > 0:
         out += ["*FRICTION", f"{model.mu:.12g}, {model.k_t:.12g}"]
 
+    out += steps(model, ref, rot, cut)
+    out += output(model)
+    out += ["*END STEP"]
+    return "\n".join(out) + "\n"
+
+
+def steps(model: Model, ref: int, rot: int, cut: dict[str, int]) -> list[str]:
+    """The amplitudes and the steps of the load path (module doc), up to the last
+    step's output: ``ref`` and ``rot`` the rigid body's reference and rotation nodes,
+    ``cut`` the symmetry planes' node sets and the displacement each holds."""
+
     def held(ref_dofs: tuple[int, ...], approach: bool) -> list[str]:
         """The boundary conditions of a step: the far face of b, the rotations, the
         symmetry planes, the reference node's held translations."""
@@ -137,7 +148,7 @@ def write(a: Body, b: Body, model: Model) -> str:
     tangential = model.Qx != 0.0 or model.Qy != 0.0
     times, values = approach_path(model.radius_ratio, model.first_radius)
     n = times.size - 1
-    out += ["*AMPLITUDE, NAME=APPROACH",
+    out = ["*AMPLITUDE, NAME=APPROACH",
             _rows(np.column_stack([times, values]), "%.12g, %.12g"),
             "*AMPLITUDE, NAME=HELD", "0.0, 1.0, 1.0, 1.0"]
     out += ["*STEP, INC=1000", "*STATIC", f"{1.0 / n:.12g}, 1.0, 1e-6, {1.0 / n:.12g}",
@@ -155,9 +166,7 @@ def write(a: Body, b: Body, model: Model) -> str:
         out += ["*CLOAD, AMPLITUDE=HELD", f"{ref}, 3, {-model.P:.12g}", "*CLOAD"]
         out += [f"{ref}, {d}, {-q:.12g}" for d, q, c in ((1, model.Qx, "X0"),
                                                          (2, model.Qy, "Y0")) if c not in cut]
-    out += output(model)
-    out += ["*END STEP"]
-    return "\n".join(out) + "\n"
+    return out
 
 
 def skin(b: Body) -> np.ndarray:
