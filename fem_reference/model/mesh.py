@@ -18,7 +18,12 @@ stresses keep ``h`` from the depth ``(h - h_surface) / SURFACE_GRADING`` down.
 gmsh runs single-threaded (HXT with several threads is not bit-reproducible).
 
 Cache directory: ``$CONTACT_VV_CACHE/fem-meshes`` if the variable is set, else
-``~/.cache/contact-vv/fem-meshes``.
+``~/.cache/contact-vv/fem-meshes``.  The cache never changes a number: an entry holds
+its full key (the parameters, the recipe's version, gmsh's version) and a SHA-256 of
+its arrays, both checked when it is read; an entry that fails the check (unreadable,
+truncated, another key's, edited) is discarded with one line on stderr and meshed
+again.  Entries are written under a temporary name and renamed, so concurrent writers
+leave one whole entry; an unwritable cache keeps the mesh in memory and says so.
 """
 
 from __future__ import annotations
@@ -26,6 +31,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import sys
 from dataclasses import asdict, dataclass
 from pathlib import Path
 
@@ -76,7 +82,8 @@ class MeshSpec:
         if self.h >= self.r_ref:
             raise MeshError(f"element size h = {self.h} must be below r_ref = {self.r_ref}")
 
-    def key(self) -> str:
+    def payload(self) -> str:
+        """The full key of the mesh: its parameters, the recipe's version and gmsh's."""
         import gmsh
 
         fields = asdict(self)
@@ -84,10 +91,13 @@ class MeshSpec:
             del fields["h_surface"]
         else:
             fields["surface_grading"] = SURFACE_GRADING
-        payload = json.dumps(
+        return json.dumps(
             {**fields, "version": _MESH_VERSION, "gmsh": gmsh.__version__}, sort_keys=True
         )
-        return hashlib.sha256(payload.encode()).hexdigest()[:20]
+
+    def key(self) -> str:
+        """The cache entry's name: a digest of :meth:`payload`."""
+        return hashlib.sha256(self.payload().encode()).hexdigest()[:20]
 
 
 def cache_dir() -> Path:
@@ -170,24 +180,64 @@ def _check(points: np.ndarray, tets: np.ndarray, spec: MeshSpec) -> None:
         )
 
 
+def digest(points: np.ndarray, tets: np.ndarray) -> str:
+    """SHA-256 of the mesh arrays (dtype, shape and bytes of each)."""
+    h = hashlib.sha256()
+    for a in (points, tets):
+        h.update(f"{a.dtype.str}{a.shape}".encode())
+        h.update(np.ascontiguousarray(a).tobytes())
+    return h.hexdigest()
+
+
+def _say(line: str) -> None:
+    print(f"contact-vv: note: {line}", file=sys.stderr)
+
+
+def read_entry(path: Path, spec: MeshSpec) -> tuple[np.ndarray, np.ndarray] | str:
+    """The (points, tets) of the cache entry ``path`` if it holds ``spec``'s mesh whole,
+    else why not."""
+    try:
+        with np.load(path, allow_pickle=False) as data:
+            if "key" not in data.files or "sha256" not in data.files:
+                return "written without its key (an older version)"
+            if str(data["key"]) != spec.payload():
+                return "holds another mesh's key"
+            points, tets = data["points"], data["tets"]
+            if str(data["sha256"]) != digest(points, tets):
+                return "its arrays do not match their checksum"
+    except Exception as exc:  # a file numpy cannot read: truncated, garbage, not a zip
+        return f"unreadable: {type(exc).__name__}"
+    return points, tets
+
+
+def _write_entry(path: Path, spec: MeshSpec, points: np.ndarray, tets: np.ndarray) -> None:
+    try:
+        with atomic_path(path) as tmp:
+            with open(tmp, "wb") as fh:
+                np.savez(fh, points=points, tets=tets, key=spec.payload(),
+                         sha256=digest(points, tets))
+    except OSError as exc:  # an unwritable cache only costs time
+        _say(f"mesh cache {path.parent} not written ({exc.strerror or exc}); the mesh is "
+             "kept in memory only")
+
+
 def build_points(spec: MeshSpec, *, use_cache: bool = True) -> tuple[np.ndarray, np.ndarray]:
-    """Dimensionless (points, tets) for ``spec``, from the cache or freshly meshed."""
+    """Dimensionless (points, tets) for ``spec``, from the cache (checked: module doc) or
+    freshly meshed."""
     path = cache_dir() / f"block-{spec.key()}.npz"
-    if use_cache and path.is_file():
+    if use_cache and path.exists():
+        entry = read_entry(path, spec)
+        if not isinstance(entry, str):
+            return entry
+        _say(f"mesh cache entry {path} discarded ({entry}); meshed again")
         try:
-            with np.load(path) as data:
-                return data["points"], data["tets"]
-        except (OSError, ValueError, KeyError):
-            pass  # corrupt cache entry: rebuild it
+            path.unlink()
+        except OSError:
+            pass  # a read-only cache: the new mesh cannot replace it either
     points, tets = _generate(spec)
     _check(points, tets, spec)
     if use_cache:
-        try:
-            with atomic_path(path) as tmp:
-                with open(tmp, "wb") as fh:
-                    np.savez(fh, points=points, tets=tets, spec=json.dumps(asdict(spec)))
-        except OSError:
-            pass  # an unwritable cache only costs time
+        _write_entry(path, spec, points, tets)
     return points, tets
 
 
