@@ -28,7 +28,7 @@ def clean(tmp_path, monkeypatch):
 
 
 def same(got, want) -> bool:
-    return all(np.array_equal(g, w) and g.dtype == w.dtype for g, w in zip(got, want))
+    return all(np.array_equal(g, w) and g.dtype == w.dtype for g, w in zip(got, want, strict=True))
 
 
 def test_entries_swapped_on_disk_are_rebuilt(clean, capsys):

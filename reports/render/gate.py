@@ -234,10 +234,12 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
 
     from reports.render import baseline as bl
     from reports.render.junit import check_path, write_junit
+    from reports.store.targets import is_stdout
 
-    stream = stream or sys.stdout
     if junit is not None:
         check_path(junit, out)
+    # the XML alone on standard output when it goes there; the lines beside it
+    stream = stream or (sys.stderr if junit is not None and is_stdout(junit) else sys.stdout)
     results = scan(out)
     if results.empty and not (Path(out) / THRESHOLDS).exists():
         raise UserError(f"no results in {out} (run `contact-vv run` first)")

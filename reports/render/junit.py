@@ -1,5 +1,6 @@
 """The gate's verdict as JUnit XML (``contact-vv gate --junit FILE``), the report format
-CI systems display (GitLab, GitHub, Jenkins).
+CI systems display (GitLab, GitHub, Jenkins); FILE may be ``-``, ``/dev/stdout`` or a
+pipe (:mod:`reports.store.targets`).
 
 One ``testsuite`` per complete case, one ``testcase`` per metric row — classname the
 case and its sweep point, name ``step N pair quantity metric`` — failed where the gate
@@ -7,7 +8,7 @@ fails it (the message: value and tolerance), skipped where the row is shown and 
 gated (the message: why), passed otherwise; a case's own problems (no gated metric, a
 solver that did not converge) are failing test cases of that suite.  The problems of
 no case (incomplete or damaged results, drifted baselines) are the failing test cases
-of a suite ``contact-vv``.  Written atomically.
+of a suite ``contact-vv``.  Written atomically to a file.
 """
 
 from __future__ import annotations
@@ -18,10 +19,12 @@ from pathlib import Path
 
 import pandas as pd
 
-from cases.result import atomic_write_text
 from reports.registry.errors import UserError
+from reports.store import targets
 from reports.store.readers import gated
 from reports.store.results import CaseResults, Scan
+
+OPTION = "--junit"
 
 #: the words a gate's problem line starts with, before the case it is about
 KINDS = ("FAIL", "INCONSISTENT", "NO METRICS", "NOT CONVERGED", "INCOMPLETE", "DAMAGED",
@@ -98,30 +101,32 @@ def junit_tree(results: Scan, problems: list[str]) -> ET.ElementTree:
 
 
 def check_path(path: Path, out: Path) -> None:
-    """UserError unless ``--junit`` may write ``path``: a file name, not a directory, not
-    inside a case directory of the results directory ``out`` (the run's files only live
-    there), and, if it exists, a JUnit report already (nothing else is replaced)."""
+    """UserError unless ``--junit`` may write ``path``: a target that can be written
+    (:func:`reports.store.targets.check`: also ``-``, a pipe, a device), not inside a case
+    directory of the results directory ``out`` (the run's files only live there), and, if
+    it is an existing file, a JUnit report already (nothing else is replaced)."""
     path = Path(path)  # an empty name is the current directory
-    if path.is_dir():
-        raise UserError(f"--junit {path}: is a directory; name a file in it")
+    targets.check(path, OPTION)
+    if targets.is_stream(path):
+        return
     parent, root = path.resolve().parent, Path(out).resolve()
     if parent != root and root in parent.parents or parent == root and path.name.startswith("."):
-        raise UserError(f"--junit {path}: lies in a case directory of {out}, which holds "
+        raise UserError(f"{OPTION} {path}: lies in a case directory of {out}, which holds "
                         "the run's own files only; write it elsewhere")
     if path.exists():
         try:
-            head = path.read_bytes()[:4096].decode("utf-8")
-        except (OSError, UnicodeDecodeError):
+            head = targets.head(path).decode("utf-8")
+        except UnicodeDecodeError:
             head = ""
         if not (head.startswith("<?xml") and "<testsuites" in head):
-            raise UserError(f"--junit {path}: exists and is not a JUnit report; not "
+            raise UserError(f"{OPTION} {path}: exists and is not a JUnit report; not "
                             "replaced (name another file)")
 
 
 def write_junit(path: Path, results: Scan, problems: list[str]) -> Path:
-    """Write :func:`junit_tree` to ``path`` atomically; the path."""
+    """Write :func:`junit_tree` to ``path`` (atomically, or once to a stream); the path."""
     tree = junit_tree(results, problems)
     ET.indent(tree)
     text = ET.tostring(tree.getroot(), encoding="unicode", xml_declaration=True)
-    atomic_write_text(Path(path), text + "\n")
+    targets.write_text(Path(path), text + "\n", OPTION)
     return Path(path)
