@@ -5,11 +5,17 @@ commands).
 Exit status: 0 success; 1 a solver failed (did not converge, crashed) or the gate found
 a failed metric, non-converged run or incomplete case; 2 a user error (bad case file,
 unknown case or solver, bad flag, missing results directory), printed as
-``contact-vv: error: <message>`` without a traceback; 130 interrupted.
+``contact-vv: error: <message>`` without a traceback; 130 interrupted; 141 the reader of
+the output went away (``contact-vv list | head``), silently, as a tool that SIGPIPE ends.
+
+Output the terminal's encoding cannot show (a non-ASCII path under ``LANG=C`` or
+``PYTHONIOENCODING=ascii``) is printed with backslash escapes, never an error.
 """
 
 from __future__ import annotations
 
+import os
+import select
 import sys
 from collections.abc import Sequence
 
@@ -33,12 +39,45 @@ def _check_out(args) -> None:
                             "another --out")
 
 
+#: the exit status of a command whose standard output was closed by its reader
+PIPE_CLOSED = 141
+
+
+def _escape_unencodable() -> None:
+    """Standard output and error escape what their encoding cannot show."""
+    for stream in (sys.stdout, sys.stderr):
+        if hasattr(stream, "reconfigure"):
+            stream.reconfigure(errors="backslashreplace")
+
+
+def _stdout_closed() -> bool:
+    """Whether standard output is a pipe its reader has closed (poll reports an error)."""
+    try:
+        poll = select.poll()
+        poll.register(sys.stdout.fileno(), select.POLLOUT)
+        return any(ev & select.POLLERR for _, ev in poll.poll(0))
+    except (OSError, ValueError, AttributeError):
+        return False
+
+
+def _silence_stdout() -> None:
+    """Send what is left to print to /dev/null: nothing more reaches the closed pipe, and
+    the interpreter's last flush raises nothing."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        os.close(devnull)
+    except (OSError, ValueError, AttributeError):
+        pass
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``contact-vv`` console script; returns the exit status.
 
     The one error boundary of the command line: every failure is one line
     ``contact-vv: error: …`` and an exit status (module doc); an unexpected exception
     shows its traceback only with ``--debug``."""
+    _escape_unencodable()
     try:
         args = build_parser().parse_args(argv)
     except SystemExit as exc:  # --help (0) or a bad flag (2)
@@ -50,6 +89,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         return COMMANDS[args.command](args)
     except (UserError, CaseError) as exc:
         return fail(str(exc))
+    except BrokenPipeError as exc:
+        if _stdout_closed():
+            _silence_stdout()
+            return PIPE_CLOSED
+        return fail(f"{exc.strerror or exc}")
     except OSError as exc:  # an unwritable --out, a full disk: the environment, not a bug
         where = f": {exc.filename}" if exc.filename else ""
         return fail(f"{exc.strerror or exc}{where}")
