@@ -63,9 +63,12 @@ def cluster_options(p: argparse.ArgumentParser, *, workers: int) -> None:
     (:mod:`reports.run.cluster`)."""
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="run the units on this Dask scheduler (e.g. tcp://host:8786)")
-    p.add_argument("--workers", type=int, default=workers,
+    p.add_argument("--workers", type=int, default=None,
                    help="run the units on a LocalCluster of this many single-threaded "
-                   f"worker processes; 0 runs them in this process (default {workers})")
+                   "worker processes, at most one per core and as many as the memory "
+                   "holds; 0 runs them in this process (default "
+                   f"{workers}{', or the cores if fewer' if workers > 1 else ''})")
+    p.set_defaults(default_workers=workers)
 
 
 def build_parser() -> argparse.ArgumentParser:

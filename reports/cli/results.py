@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 
 from reports.registry.errors import RunFailed, UserError
@@ -33,8 +34,8 @@ def cmd_report(args: argparse.Namespace) -> int:
 def cmd_gate(args: argparse.Namespace) -> int:
     from reports.render.gate import run_gate
 
-    if args.drift is not None and not args.drift > 0:
-        raise UserError("--drift must be a positive number")
+    if args.drift is not None and not (math.isfinite(args.drift) and args.drift > 0):
+        raise UserError("--drift must be a finite positive number")
     return run_gate(results_dir(args), baseline=args.baseline,
                     update_baseline=args.update_baseline, drift_tol=args.drift,
                     verbose=args.verbose, junit=args.junit)

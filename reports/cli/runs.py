@@ -88,6 +88,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     for p in plans:
         for w in p.warnings:
             print(f"{PROG}: warning: {w}", file=sys.stderr)
+    check_workers(args, plans)
     progress = False if args.no_progress else None
     estimated = _announce(plans)
     t0 = time.perf_counter()
@@ -112,6 +113,7 @@ def cluster(args: argparse.Namespace) -> Iterator[Any]:
     if _serial(args):
         yield None
         return
+    check_workers(args, [])
     from reports.run.cluster import DaskExecutor
 
     with DaskExecutor(args.scheduler, args.workers) as dask:
@@ -119,10 +121,31 @@ def cluster(args: argparse.Namespace) -> Iterator[Any]:
 
 
 def _serial(args: argparse.Namespace) -> bool:
-    """Whether the units run in this process (``--workers 0`` and no ``--scheduler``)."""
+    """Whether the units run in this process (``--workers 0`` and no ``--scheduler``);
+    ``--workers`` not given is the command's default, at most the cores."""
+    if args.workers is None:
+        from reports.run.cluster import cores
+
+        args.workers = min(args.default_workers, cores())
     if args.workers < 0:
         raise UserError("--workers must be >= 0")
     return args.workers == 0 and not args.scheduler
+
+
+def check_workers(args: argparse.Namespace, plans: list[Any]) -> None:
+    """UserError, before any worker starts, when ``--workers`` asks for more workers than
+    the machine allows for ``plans`` (:func:`reports.run.cluster.worker_cap`, in 90 % of
+    the memory available now: ``--max-memory`` bounds one run), saying how many it
+    would."""
+    if _serial(args) or args.scheduler or args.workers <= 1:
+        return
+    from reports.run.cluster import worker_cap
+    from reports.run.plan import available_memory
+
+    cap, why = worker_cap(plans, 0.9 * available_memory())
+    if args.workers > cap:
+        raise UserError(f"--workers {args.workers}: this machine allows at most {cap} "
+                        f"({why})")
 
 
 #: a unit whose estimate is longer is announced before the run starts
@@ -171,6 +194,7 @@ def cmd_sweep(args: argparse.Namespace) -> int:
                       limits=limits_of(args), explicit=bool(requested))
     for w in plan.warnings:
         print(f"{PROG}: warning: {w}", file=sys.stderr)
+    check_workers(args, [plan])
     progress = False if args.no_progress else None
     t0 = time.perf_counter()
     if serial:

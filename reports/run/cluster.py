@@ -65,6 +65,98 @@ def worker_environ() -> dict[str, Any]:
     return environ
 
 
+#: the memory a worker process is counted for before its units [bytes]: Python, numpy,
+#: Dask and the solvers' imports
+WORKER_BASE = 256 * 2**20
+
+
+def cores() -> int:
+    """The processor cores this process may run on."""
+    import os
+
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # not Linux
+        return os.cpu_count() or 1
+
+
+def worker_cap(plans: list[CasePlan], memory: float) -> tuple[int, str]:
+    """The most LocalCluster workers the machine allows for ``plans``, and why: one per
+    core, and no more than ``memory`` [bytes] holds if every worker runs the largest
+    unit by its estimate (:data:`WORKER_BASE` each besides)."""
+    n_cores = cores()
+    largest, what = 0.0, ""
+    for plan in plans:
+        runs = [(plan.points[i], s) for i, s in plan.units()]
+        runs += [(g.case, g.solver) for g in plan.study_runs()]
+        for case, solver in runs:
+            cost = solvers.estimate(solver, case)
+            if cost is not None and math.isfinite(cost.memory) and cost.memory > largest:
+                largest, what = float(cost.memory), f"{solver} on {plan.name}"
+    by_memory = max(1, int(memory // (largest + WORKER_BASE)))
+    if by_memory < n_cores:
+        return by_memory, (f"{memory / 2**30:.3g} GiB of memory holds {by_memory} worker(s) "
+                           f"running the largest unit, {what}, "
+                           f"{(largest + WORKER_BASE) / 2**30:.3g} GiB each")
+    return n_cores, f"{n_cores} core(s), one single-threaded worker each"
+
+
+#: the seconds a scheduler has to connect and send its handshake
+HANDSHAKE_S = 10.0
+#: the largest handshake frame accepted [bytes] (a Dask scheduler's is a few hundred)
+HANDSHAKE_MAX = 1 << 20
+
+
+def probe_scheduler(address: str, seconds: float = HANDSHAKE_S) -> None:
+    """UserError, naming ``address``, unless a TCP peer there opens with a Dask
+    handshake within ``seconds``: a scheduler writes its handshake first (an 8-byte
+    length, then that many bytes).  A peer that says nothing (an HTTP server waits for
+    its request) or talks first in another protocol is refused before Dask waits on it
+    without a bound or reads its first bytes as a frame's length.  Other protocols
+    (tls://, ucx://, …) are left to Dask."""
+    import socket
+    import struct
+    import time
+
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    try:
+        protocol, location = parse_address(address)
+        if protocol != "tcp":
+            return
+        host, port = parse_host_port(location)
+    except (ValueError, TypeError) as exc:
+        raise UserError(f"--scheduler {address!r}: not a Dask scheduler address, e.g. "
+                        f"tcp://127.0.0.1:8786 ({exc})") from None
+    deadline = time.monotonic() + seconds
+
+    def read(sock: socket.socket, n: int) -> bytes:
+        data = b""
+        while len(data) < n:
+            sock.settimeout(max(deadline - time.monotonic(), 1e-3))
+            chunk = sock.recv(min(n - len(data), 65536))
+            if not chunk:
+                raise UserError(f"--scheduler {address}: closed the connection without a "
+                                "Dask handshake; not a Dask scheduler")
+            data += chunk
+        return data
+
+    try:
+        with socket.create_connection((host, port), timeout=seconds) as sock:
+            (size,) = struct.unpack("Q", read(sock, 8))  # as Dask packs it
+            if not 0 < size <= HANDSHAKE_MAX:
+                raise UserError(f"--scheduler {address}: answered in another protocol "
+                                "(its first message is not a Dask handshake); not a Dask "
+                                "scheduler")
+            read(sock, size)
+    except TimeoutError:
+        raise UserError(f"--scheduler {address}: sent no Dask handshake within "
+                        f"{seconds:g} s; not a Dask scheduler (or not reachable)") from None
+    except OSError as exc:
+        raise UserError(f"cannot reach the Dask scheduler {address}: "
+                        f"{exc.strerror or exc}") from None
+
+
 #: the Dask worker resource a unit's memory estimate [bytes] is requested from, where the
 #: workers declare it (``dask worker ... --resources MEMORY=32e9``)
 MEMORY = "MEMORY"
@@ -97,6 +189,7 @@ class DaskExecutor:
         from distributed import Client, LocalCluster
 
         if self.scheduler:
+            probe_scheduler(self.scheduler)
             try:
                 self.client = Client(self.scheduler, timeout="20s")
             except OSError as exc:

@@ -36,6 +36,10 @@ def parse_value(text: str) -> Any:
         return text.strip()
 
 
+#: the most values a swept key may take
+MAX_VALUES = 10_000
+
+
 def parse_param(spec: str) -> tuple[str, list[Any]]:
     """``key=start:stop:step`` (stop included) or ``key=v1,v2`` -> (key, values)."""
     key, eq, rhs = spec.partition("=")
@@ -49,11 +53,14 @@ def parse_param(spec: str) -> tuple[str, list[Any]]:
                                       for n in nums):
             raise UserError(f"--param {spec!r}: a range is START:STOP:STEP with numbers")
         start, stop, step = nums
-        if step == 0 or (stop - start) / step < 0:
+        if not all(math.isfinite(n) for n in nums):
+            raise UserError(f"--param {spec!r}: START, STOP and STEP must be finite numbers")
+        steps = (stop - start) / step if step else -1.0  # (may overflow to inf)
+        if steps < 0:
             raise UserError(f"--param {spec!r}: STEP must be non-zero and move towards STOP")
-        count = int(math.floor((stop - start) / step + 1e-9)) + 1
-        if count > 10_000:
-            raise UserError(f"--param {spec!r}: {count} values (limit 10000)")
+        count = math.floor(steps + 1e-9) + 1 if math.isfinite(steps) else math.inf
+        if count > MAX_VALUES:
+            raise UserError(f"--param {spec!r}: {count:.6g} values (limit {MAX_VALUES})")
         as_int = all(isinstance(n, int) for n in nums)
         values = [start + k * step if as_int else round(start + k * step, 12)
                   for k in range(count)]

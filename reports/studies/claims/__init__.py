@@ -72,8 +72,9 @@ def numbers(text: str | None) -> tuple[int, ...]:
             span = range(int(lo), int(hi) + 1) if dash else [int(lo)]
         except ValueError:
             raise UserError(f"--claims {text!r}: {token!r} is not N or N-M") from None
-        bad = [n for n in span if n not in known]
-        if bad or not span:
+        # the ends first: a range is never expanded beyond the claims (1-999999999999)
+        if not span or span[0] < min(known) or span[-1] > max(known) or \
+                any(n not in known for n in span):
             raise UserError(f"--claims {text!r}: the claims are numbered 1 to {len(known)}")
         out += [n for n in span if n not in out]
     if not out:
