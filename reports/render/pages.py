@@ -9,16 +9,20 @@
   ``DIR/_report/<case>/fig_NNN.png``, loaded lazily.
 
 The pages come from Jinja2 templates (``reports/render/templates``).  ``_report`` cannot
-be a case's directory (a case name starts with a letter or digit).  The pages are
-written into a staging directory and renamed into place; an existing ``_report`` is
-replaced only if it holds nothing but pages and figures, and ``index.html`` only if it
-is a report (its title).
+be a case's directory (a case name starts with a letter or digit).  A report holds the
+OS lock of ``DIR/._report.lock`` from start to end, so two reports of one directory
+write one after the other.  The pages are written into the staging directory
+``DIR/._report.partial`` (the report's own: never a case to ``gate``; what a killed
+report left there, and its ``._report.old-<pid>``, the next report removes), renamed
+onto ``_report``, and the index is then replaced atomically: a report killed before that
+rename leaves the previous report as it was.  An existing ``_report`` is replaced only
+if it holds nothing but pages and figures, and ``index.html`` only if it is a report
+(its title).
 """
 
 from __future__ import annotations
 
 import base64
-import os
 import re
 import shutil
 from dataclasses import dataclass
@@ -37,12 +41,14 @@ from reports.render.threshold_gate import threshold_gate
 from reports.store import layout
 from reports.store.readers import gated
 from reports.store.results import CaseResults, Scan, not_converged, scan
+from reports.store.staging import held, replace_dir
 from reports.studies import gridstudy
 from reports.studies.gridstudy import GRID_STUDY
 from reports.studies.jumpstudy import JUMP_STUDY
 
 PAGES = "_report"  # the case pages' directory under DIR
-_STAGING = "._report.partial"
+_STAGING = f".{PAGES}.partial"
+_STAGING_OLD = f".{PAGES}.old-"  # replaced pages on their way out (staging.remove_dir)
 #: the title every report index has: an ``index.html`` without it is not one (kept)
 TITLE = "<title>contact-vv report</title>"
 _DATA_URI = re.compile(r'<img alt="([^"]*)" src="data:image/png;base64,([^"]+)">')
@@ -139,9 +145,10 @@ def write_pages(results: Scan, out: Path) -> list[CaseRow]:
 
     final, staging = out / PAGES, out / _STAGING
     _replaceable(final, "pages")
-    if staging.exists():
-        _replaceable(staging, "pages")
-        shutil.rmtree(staging)
+    for left in [staging, *out.glob(f"{_STAGING_OLD}*")]:  # a killed report's
+        if left.exists() or left.is_symlink():
+            _replaceable(left, "pages")
+            shutil.rmtree(left)
     staging.mkdir()
     rows = []
     template = _ENV.get_template("case.html.j2")
@@ -159,11 +166,7 @@ def write_pages(results: Scan, out: Path) -> list[CaseRow]:
                                section=externalise(section, staging / case.name, case.name))
         (staging / f"{case.name}.html").write_text(page, encoding="utf-8")
         rows.append(row)
-    if final.exists():
-        trash = out / f"._report.old-{os.getpid()}"
-        os.replace(final, trash)
-        shutil.rmtree(trash)
-    os.replace(staging, final)
+    replace_dir(staging, final)
     return sorted(rows, key=lambda r: (r.cls != "fail", r.name))
 
 
@@ -201,9 +204,10 @@ def write_report(out: Path) -> Path:
     if results.empty and not (out / layout.THRESHOLDS).exists():
         raise UserError(f"no results in {out} (run `contact-vv run` first)")
     path = out / layout.REPORT
-    _replaceable(path, "index")
-    rows = write_pages(results, out)
-    atomic_write_text(path, render_index(results, out, rows))
+    with held(layout.lock_file(out, PAGES)):  # one report of a directory at a time
+        _replaceable(path, "index")
+        rows = write_pages(results, out)
+        atomic_write_text(path, render_index(results, out, rows))
     lines = case_problems(results) + _thresholds_problem(out)
     if lines:
         raise RunFailed([*lines, f"report {path} written without the {len(lines)} "

@@ -166,8 +166,12 @@ def foreign(root: Path, extra: frozenset[str] = frozenset()) -> Path | None:
 
 
 def partial_case_name(path: Path) -> str | None:
-    """The case name of a staging directory, or None if ``path`` is not one."""
+    """The case name of a case's staging directory, or None if ``path`` is not one (the
+    report's own, ``._report.partial``, is not: ``_report`` is no case name)."""
+    from cases.schema import NAME
+
     name = Path(path).name
     if name.startswith(".") and name.endswith(PARTIAL_SUFFIX):
-        return name[1 : -len(PARTIAL_SUFFIX)]
+        case = name[1 : -len(PARTIAL_SUFFIX)]
+        return case if NAME.fullmatch(case) else None
     return None

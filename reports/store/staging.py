@@ -12,6 +12,7 @@ ends (:func:`held`: while still held, so that no second holder can appear).
 
 from __future__ import annotations
 
+import errno
 import fcntl
 import os
 import re
@@ -130,6 +131,43 @@ def claim_staging(out: Path, name: str, extra: frozenset[str] = frozenset()) -> 
         remove_dir(staging)
     staging.mkdir(parents=True)
     return staging
+
+
+#: renameat2's flag that swaps two paths in one step (Linux 3.15; ext4, xfs, btrfs, tmpfs)
+_RENAME_EXCHANGE = 2
+_AT_FDCWD = -100
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap the entries ``a`` and ``b`` in one step; False where the system cannot."""
+    import ctypes
+    import ctypes.util
+
+    try:
+        libc = ctypes.CDLL(ctypes.util.find_library("c") or "libc.so.6", use_errno=True)
+        renameat2 = libc.renameat2
+    except (OSError, AttributeError):  # not glibc 2.28+, not Linux
+        return False
+    renameat2.argtypes = [ctypes.c_int, ctypes.c_char_p, ctypes.c_int, ctypes.c_char_p,
+                          ctypes.c_uint]
+    done = renameat2(_AT_FDCWD, os.fsencode(a), _AT_FDCWD, os.fsencode(b), _RENAME_EXCHANGE)
+    if done == 0:
+        return True
+    err = ctypes.get_errno()
+    if err in (errno.EINVAL, errno.ENOSYS, errno.ENOTSUP):  # a file system without it
+        return False
+    raise OSError(err, os.strerror(err), str(a))
+
+
+def replace_dir(staging: Path, final: Path) -> None:
+    """Put the directory ``staging`` in place of ``final`` and remove the old one: in one
+    step where the system can swap two paths (:func:`_exchange`), so that ``final`` is
+    never absent; else by renaming the old one away first."""
+    if final.exists() and _exchange(staging, final):
+        shutil.rmtree(staging)  # the old one, swapped out
+        return
+    remove_dir(final)
+    os.replace(staging, final)
 
 
 def remove_dir(path: Path) -> None:
