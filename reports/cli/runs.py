@@ -52,8 +52,12 @@ def report_runs(runs, out: Path) -> int:
     for r in failed:
         for line in r.failures:
             print(f"{PROG}: error: {line}", file=sys.stderr)
-        print(f"{PROG}: {r.name}: incomplete results left in {staging_dir(out, r.name)} "
-              "(not reported as complete)", file=sys.stderr)
+        if r.staging_left:
+            print(f"{PROG}: {r.name}: incomplete results left in {staging_dir(out, r.name)}"
+                  " (not reported as complete)", file=sys.stderr)
+        else:
+            print(f"{PROG}: {r.name}: nothing written (its partial results removed)",
+                  file=sys.stderr)
     if failed:
         return 2 if user else 1
     return 0

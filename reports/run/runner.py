@@ -41,7 +41,14 @@ from reports.registry.errors import UserError
 from reports.registry.tolerances import TOLERANCE_COLUMNS
 from reports.run import study_runs
 from reports.run.plan import CasePlan
-from reports.run.units import Executor, UnitOutcome, failure_line, serial_executor
+from reports.run.units import (
+    Executor,
+    UnitOutcome,
+    disk_error,
+    disk_full,
+    failure_line,
+    serial_executor,
+)
 from reports.store import layout, manifest
 from reports.store.event_table import events_frame
 from reports.store.staging import case_lock, claim_staging, remove_dir
@@ -67,6 +74,7 @@ class CaseRun:
     wall_s: float = 0.0
     unit_wall_s: float = 0.0
     metrics: pd.DataFrame | None = None
+    staging_left: bool = True  # a failed run's staging directory is on disk
 
 
 @dataclass
@@ -84,7 +92,10 @@ class _Collected:
 
 
 def _failed(outcome: UnitOutcome, what: str, exc: Exception) -> UnitOutcome:
-    """``outcome`` turned into an internal failure: ``what`` failed with ``exc``."""
+    """``outcome`` turned into an internal failure: ``what`` failed with ``exc`` (a full
+    disk's failure where it is one)."""
+    if disk_full(exc):
+        return replace(outcome, result=None, kind="disk", error=disk_error(exc))
     return replace(outcome, result=None, kind="internal",
                                detail=traceback.format_exc(),
                                error=f"{what} failed: {type(exc).__name__}: {exc}")
@@ -155,6 +166,16 @@ def _collect(plan: CasePlan, staging: Path, executor: Executor, progress: bool |
     finally:
         bar.close()
     return got
+
+
+def _discard(staging: Path, run: CaseRun) -> None:
+    """Remove the staging directory of a run the disk could not take (where the disk
+    allows removing it); ``run.staging_left`` says whether it is still there."""
+    try:
+        remove_dir(staging)
+    except OSError:
+        pass
+    run.staging_left = staging.exists()
 
 
 def _manifest_body(plan: CasePlan, got: _Collected, t0: float, unit_wall: float,
@@ -228,9 +249,17 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
     if got.failures:
         run.failures = [failure_line(plan.name, f) for f in got.failures]
         run.user_error = all(f.kind == "case" for f in got.failures)
-        atomic_write_text(staging / layout.FAILED, json.dumps(
-            {"case": plan.name, "failures": run.failures,
-             "details": [f.detail for f in got.failures if f.detail]}, indent=1))
+        if any(f.kind == "disk" for f in got.failures):  # nothing more fits: remove it
+            _discard(staging, run)
+            return run
+        try:
+            atomic_write_text(staging / layout.FAILED, json.dumps(
+                {"case": plan.name, "failures": run.failures,
+                 "details": [f.detail for f in got.failures if f.detail]}, indent=1))
+        except OSError as exc:
+            if not disk_full(exc):
+                raise
+            _discard(staging, run)
         return run
 
     summary = summary_frame([r for key in sorted(got.rows) for r in got.rows[key]])

@@ -4,6 +4,7 @@ writer as the solver computes them."""
 
 from __future__ import annotations
 
+import errno
 import math
 import numbers
 import time
@@ -33,7 +34,7 @@ class UnitOutcome:
     wall_s: float
     error: str = ""
     #: '' | 'case' (bad input) | 'solver' (did not converge) | 'overrun' (past its
-    #: deadline) | 'internal'
+    #: deadline) | 'disk' (the disk is full: :func:`disk_full`) | 'internal'
     kind: str = ""
     detail: str = ""
     cell_size: float = math.nan  # the solver's representative cell size [mm]
@@ -98,6 +99,21 @@ class StepWriter:
         self.count += 1
 
 
+#: the errors of a disk that cannot take more (full, or over the user's quota)
+DISK_FULL = (errno.ENOSPC, errno.EDQUOT)
+
+
+def disk_full(exc: BaseException) -> bool:
+    """Whether ``exc`` says the disk cannot take more: the machine's fault, not a
+    solver's."""
+    return isinstance(exc, OSError) and exc.errno in DISK_FULL
+
+
+def disk_error(exc: OSError) -> str:
+    """``exc`` of a full disk in words, with the file it was writing where known."""
+    return f"{exc.strerror or exc}" + (f": {exc.filename}" if exc.filename else "")
+
+
 def run_unit(fn: Callable[..., RunResult], case: Case, solver: str, index: int,
              progress: bool = False,
              on_output: Callable[[StepResult], None] | None = None,
@@ -122,6 +138,9 @@ def run_unit(fn: Callable[..., RunResult], case: Case, solver: str, index: int,
         return UnitOutcome(index, solver, case.param, None, time.perf_counter() - t0,
                            error=str(exc), kind="solver", detail=traceback.format_exc())
     except (Exception, SystemExit) as exc:  # a bug in a solver: keep going with the others
+        if disk_full(exc):  # writing its output steps, or a solver's own files
+            return UnitOutcome(index, solver, case.param, None, time.perf_counter() - t0,
+                               error=disk_error(exc), kind="disk")
         return UnitOutcome(index, solver, case.param, None, time.perf_counter() - t0,
                            error=f"{type(exc).__name__}: {exc}", kind="internal",
                            detail=traceback.format_exc())
@@ -159,6 +178,9 @@ def derive(step: StepResult, case: Case) -> None:
 
 def failure_line(case: str, outcome: UnitOutcome) -> str:
     where = f"{case}" + (f" [{outcome.param}]" if outcome.param else "")
+    if outcome.kind == "disk":
+        return f"{where}: the disk is full: solver {outcome.solver}'s results could not " \
+            f"be written ({outcome.error})"
     what = {"case": "rejected the case", "solver": "did not converge",
             "overrun": "was stopped", "internal": "crashed"}.get(outcome.kind, "failed")
     return f"{where}: solver {outcome.solver} {what}: {outcome.error}"

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import errno
 import fcntl
+import glob
 import os
 import re
 import shutil
@@ -120,6 +121,7 @@ def claim_staging(out: Path, name: str, extra: frozenset[str] = frozenset()) -> 
     ``extra``: names beyond :data:`reports.store.layout.OWN_NAMES` a run writes at the top
     (the studies' tables)."""
     staging = layout.staging_dir(out, name)
+    _remove_leftovers(out, name, extra)
     if staging.exists() or staging.is_symlink():
         if staging.is_symlink() or not (staging.is_dir() and _ours(staging, extra)):
             raise UserError(f"{staging} exists and is not a contact-vv staging directory; "
@@ -170,10 +172,29 @@ def replace_dir(staging: Path, final: Path) -> None:
     os.replace(staging, final)
 
 
+def _remove_leftovers(out: Path, name: str, extra: frozenset[str]) -> None:
+    """Remove what a killed removal of ``name``'s directories left (:func:`remove_dir`'s
+    ``.<case>.old-<pid>`` and ``..<case>.partial.old-<pid>``) where it holds only a run's
+    files; the caller holds the case's lock, so no live run owns them."""
+    final, staging = layout.case_dir(out, name), layout.staging_dir(out, name)
+    for left in [*Path(out).glob(_old_pattern(final)), *Path(out).glob(_old_pattern(staging))]:
+        if left.is_dir() and not left.is_symlink() and _ours(left, extra):
+            shutil.rmtree(left, ignore_errors=True)
+
+
+def _old(path: Path, pid: int) -> Path:
+    """Where :func:`remove_dir` renames ``path`` before removing it."""
+    return path.with_name(f".{path.name}.old-{pid}")
+
+
+def _old_pattern(path: Path) -> str:
+    return f".{glob.escape(path.name)}.old-[0-9]*"
+
+
 def remove_dir(path: Path) -> None:
     """Remove a directory by first renaming it away (the removal itself is not atomic)."""
     if path.exists():
-        trash = path.with_name(f".{path.name}.old-{os.getpid()}")
+        trash = _old(path, os.getpid())
         if trash.exists():
             shutil.rmtree(trash)
         os.replace(path, trash)
