@@ -43,7 +43,8 @@ def case_path(name_or_path: str | Path) -> Path:
         if p.is_dir():
             raise CaseError(f"case file {p} is a directory")
         if not p.is_file():
-            raise CaseError(f"case file {p} does not exist")
+            raise CaseError(f"case file {p} " + ("is not a regular file (a device or a "
+                            "pipe: name a TOML file)" if p.exists() else "does not exist"))
         return p
     bundled = CASES_DIR / f"{name_or_path}.toml"
     if not bundled.is_file():

@@ -112,3 +112,14 @@ def test_junit_on_a_read_only_or_full_file_system_is_refused(results, tmp_path, 
 def test_a_stream_is_never_read():
     assert targets.head(Path("/dev/zero")) == b""
     assert targets.is_stream(Path("-")) and not targets.is_stream(Path("missing.xml"))
+
+
+@pytest.mark.parametrize(("argv", "needle"), [
+    (["run", "/dev/zero"], "case file /dev/zero is not a regular file"),
+    (["gate", "{out}", "--baseline", "/dev/zero"], "/dev/zero is not a directory"),
+], ids=["case-file", "baseline"])
+def test_an_input_that_is_a_device_is_refused_unread(results, capsys, argv, needle):  # noqa: F811
+    if not Path("/dev/zero").exists():
+        pytest.skip("a system without /dev/zero")
+    code, err = _answer([a.format(out=results) for a in argv], capsys)
+    assert code == 2 and needle in err, err

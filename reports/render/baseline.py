@@ -168,8 +168,9 @@ def read(folder: Path) -> dict[str, pd.DataFrame]:
     directory (missing, no ``<case>.csv``, or a file that cannot be read as a baseline)."""
     folder = Path(folder)
     if not folder.is_dir():
-        raise UserError(f"baseline directory {folder} does not exist "
-                        "(create it with `contact-vv gate --update-baseline DIR`)")
+        raise UserError(f"baseline directory {folder} " + (
+            "is not a directory" if folder.exists() else "does not exist")
+            + " (create it with `contact-vv gate --update-baseline DIR`)")
     paths = sorted(folder.glob("*.csv"))
     if not paths:
         raise UserError(f"baseline directory {folder} holds no <case>.csv baselines "
