@@ -37,7 +37,8 @@ def _tree(out: Path) -> dict[str, bytes]:
     return {str(p.relative_to(out)): p.read_bytes() for p in out.rglob("*") if p.is_file()}
 
 
-@pytest.mark.parametrize("where", ["streaming a step", "writing the unit", "failed.json"])
+@pytest.mark.parametrize("where", ["streaming a step", "writing the unit", "failed.json",
+                                   "the tables"])
 def test_a_full_disk_is_said_and_leaves_no_partial(world, capsys, monkeypatch, where):
     assert _run(world, capsys, "a")[0] in (0, 1)
     out = world / "out"
@@ -46,13 +47,18 @@ def test_a_full_disk_is_said_and_leaves_no_partial(world, capsys, monkeypatch, w
         monkeypatch.setattr(units, "save_step", _full)
     elif where == "writing the unit":
         monkeypatch.setattr(runner, "write_unit", _full)
+    elif where == "the tables":
+        monkeypatch.setattr(runner, "write_csv", _full)
     else:  # a solver that fails, then a disk that cannot take its failed.json
         monkeypatch.setattr(units, "save_step", lambda *a: (_ for _ in ()).throw(
             RuntimeError("did not converge")))
         monkeypatch.setattr(runner, "atomic_write_text", _full)
     code, err = _run(world, capsys, "b")
     assert code == 1, err
-    if where != "failed.json":
+    if where == "the tables":
+        assert "b: the disk is full: the case's tables could not be written (No space " \
+            "left on device)" in err, err
+    elif where != "failed.json":
         assert "b: the disk is full: solver ic's results could not be written (No space " \
             "left on device)" in err and "crashed" not in err, err
     assert "b: nothing written (its partial results removed)" in err, err

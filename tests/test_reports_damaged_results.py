@@ -237,7 +237,7 @@ def test_undamaged_results_pass(res, capsys):
     assert "report:" in out and "Sweep on Dask" in report_text(res)
     code, out, err = call(capsys, "gate", "--out", str(res))
     assert (code, err) == (0, ""), err
-    assert "14/14 metric(s) passed, 2 not gated (not converged), 0 problem(s)" in out
+    assert "14/14 metric(s) passed, 2 shown and not gated, 0 problem(s)" in out
 
 
 def test_the_other_cases_are_still_reported(res, capsys):
@@ -261,7 +261,7 @@ def test_the_other_cases_are_still_reported(res, capsys):
     assert "metrics.csv: empty file (0 bytes)" in page
     code, out, err = call(capsys, "gate", "--out", str(res))
     assert code == 1
-    assert ("gate: 1 case(s), 14/14 metric(s) passed, 2 not gated (not converged), "
+    assert ("gate: 1 case(s), 14/14 metric(s) passed, 2 shown and not gated, "
             "2 problem(s)") in out
     assert_error(err, "DAMAGED hertz: ")
 
@@ -310,7 +310,7 @@ def baseline(res, capsys) -> Path:
      "hertz.csv: two rows for solver ic"),
     (lambda b: to_dir(b / "other.csv"), "other.csv: not a regular file"),
     (lambda b: (b / "hertz.csv").unlink(), "holds no <case>.csv baselines"),
-    (lambda b: (shutil.rmtree(b), b.write_text("x")), "does not exist"),
+    (lambda b: (shutil.rmtree(b), b.write_text("x")), "is not a directory"),
 ], ids=["binary", "empty", "not-utf8", "missing-column", "non-numeric", "duplicate-rows",
         "a-directory", "no-baselines", "a-file"])
 def test_damaged_baseline_is_a_user_error(res, baseline, capsys, damage, needle):

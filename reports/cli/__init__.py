@@ -86,7 +86,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"{PROG}: warning: {line}", file=sys.stderr)
     try:
         _check_out(args)
-        return COMMANDS[args.command](args)
+        code = COMMANDS[args.command](args)
+        sys.stdout.flush()  # a closed reader is met here, not at the interpreter's exit
+        return code
     except (UserError, CaseError) as exc:
         return fail(str(exc))
     except BrokenPipeError as exc:

@@ -53,9 +53,12 @@ def parse_param(spec: str) -> tuple[str, list[Any]]:
                                       for n in nums):
             raise UserError(f"--param {spec!r}: a range is START:STOP:STEP with numbers")
         start, stop, step = nums
-        if not all(math.isfinite(n) for n in nums):
+        if not all(isinstance(n, int) or math.isfinite(n) for n in nums):
             raise UserError(f"--param {spec!r}: START, STOP and STEP must be finite numbers")
-        steps = (stop - start) / step if step else -1.0  # (may overflow to inf)
+        try:
+            steps = (stop - start) / step if step else -1.0  # (may overflow to inf)
+        except OverflowError:  # integers beyond a float's range
+            steps = math.inf
         if steps < 0:
             raise UserError(f"--param {spec!r}: STEP must be non-zero and move towards STOP")
         count = math.floor(steps + 1e-9) + 1 if math.isfinite(steps) else math.inf

@@ -10,5 +10,6 @@ __all__ = [
     "results",
     "staging",
     "study_tables",
+    "targets",
     "write",
 ]

@@ -56,6 +56,9 @@ PROBE = study_file("probe")
 EVENTS = "events.csv"
 FIELDS = "fields"
 PARTIAL_SUFFIX = ".partial"
+#: the report's case pages' folder (reports.render.pages): no case's name, since a case
+#: name starts with a letter or digit; its staging folder is the report's, not a case's
+REPORT_PAGES = "_report"
 FAILED = "failed.json"
 SWEEP_PLOT = "sweep.png"
 SWEEP_CHECK = "sweep_check.json"
@@ -168,10 +171,8 @@ def foreign(root: Path, extra: frozenset[str] = frozenset()) -> Path | None:
 def partial_case_name(path: Path) -> str | None:
     """The case name of a case's staging directory, or None if ``path`` is not one (the
     report's own, ``._report.partial``, is not: ``_report`` is no case name)."""
-    from cases.schema import NAME
-
     name = Path(path).name
     if name.startswith(".") and name.endswith(PARTIAL_SUFFIX):
         case = name[1 : -len(PARTIAL_SUFFIX)]
-        return case if NAME.fullmatch(case) else None
+        return None if case == REPORT_PAGES else case
     return None

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import errno
 import fcntl
-import glob
 import os
 import re
 import shutil
@@ -177,18 +176,16 @@ def _remove_leftovers(out: Path, name: str, extra: frozenset[str]) -> None:
     ``.<case>.old-<pid>`` and ``..<case>.partial.old-<pid>``) where it holds only a run's
     files; the caller holds the case's lock, so no live run owns them."""
     final, staging = layout.case_dir(out, name), layout.staging_dir(out, name)
-    for left in [*Path(out).glob(_old_pattern(final)), *Path(out).glob(_old_pattern(staging))]:
-        if left.is_dir() and not left.is_symlink() and _ours(left, extra):
+    olds = re.compile("|".join(re.escape(f".{p.name}.old-") + r"\d+" for p in (final, staging)))
+    for left in Path(out).iterdir():
+        if olds.fullmatch(left.name) and left.is_dir() and not left.is_symlink() \
+                and _ours(left, extra):
             shutil.rmtree(left, ignore_errors=True)
 
 
 def _old(path: Path, pid: int) -> Path:
     """Where :func:`remove_dir` renames ``path`` before removing it."""
     return path.with_name(f".{path.name}.old-{pid}")
-
-
-def _old_pattern(path: Path) -> str:
-    return f".{glob.escape(path.name)}.old-[0-9]*"
 
 
 def remove_dir(path: Path) -> None:
