@@ -104,6 +104,9 @@ def record() -> SolverRecord:
     """The ``calculix`` solver (unavailable without ``ccx``: :func:`missing`)."""
     return SolverRecord("calculix", __name__, budget=budget, cell_size=cell, label=label,
                         refine=refine, reach=reach, requires=missing,
+                        scope="static contact with isotropic Coulomb friction, identical or "
+                        "dissimilar materials, load P then (Qx, Qy); declines wear, "
+                        "orthotropic friction, a shift or sliding, and the approach held",
                         style={"color": "C8", "ls": ":", "marker": "s", "ms": 3})
 
 

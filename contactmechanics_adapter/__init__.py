@@ -45,11 +45,19 @@ def refine_grid(case: Case, factor: float) -> Case:
     return refine(case, factor)
 
 
-def record() -> SolverRecord | None:
-    """The ``contactmechanics`` solver; None without ContactMechanics installed."""
+def missing() -> str | None:
+    """Why the plugin cannot run here (ContactMechanics not installed), None if it can."""
     if importlib.util.find_spec("ContactMechanics") is None:
-        return None
+        return "ContactMechanics is not installed: pip install 'contact-vv[peers]'"
+    return None
+
+
+def record() -> SolverRecord:
+    """The ``contactmechanics`` solver, offered always and available where
+    ContactMechanics is installed (:func:`missing`)."""
     return SolverRecord("contactmechanics", __name__, budget=grid_budget, refine=refine_grid,
+                        requires=missing, scope="static frictionless normal contact; "
+                        "declines friction, tangential loads and wear",
                         style={"color": "C8", "ls": "-", "marker": "^", "ms": 3})
 
 

@@ -114,17 +114,34 @@ def refine(case: Case, factor: float) -> Case:
     return refine_fem(case, factor)
 
 
-def record() -> SolverRecord | None:
-    """The ``kratos`` solver; None without Kratos installed (the ``[peers]`` extra)."""
-    if importlib.util.find_spec("KratosMultiphysics") is None:
-        return None
-    for dist in DISTRIBUTIONS:
-        try:
-            metadata.version(dist)
-        except metadata.PackageNotFoundError:
-            return None
+#: how to get the Kratos distributions the plugin drives
+HOW_TO_GET = "pip install 'contact-vv[kratos]' (or [peers])"
+
+
+def missing() -> str | None:
+    """Why the plugin cannot run here (a Kratos distribution not installed), None if it
+    can."""
+    gone = [d for d in DISTRIBUTIONS if not _installed(d)]
+    if not gone and importlib.util.find_spec("KratosMultiphysics") is None:
+        gone = ["KratosMultiphysics"]
+    return f"Kratos is not installed ({gone[0]}…): {HOW_TO_GET}" if gone else None
+
+
+def _installed(dist: str) -> bool:
+    try:
+        metadata.version(dist)
+    except metadata.PackageNotFoundError:
+        return False
+    return True
+
+
+def record() -> SolverRecord:
+    """The ``kratos`` solver, offered always and available where Kratos is installed
+    (:func:`missing`)."""
     return SolverRecord("kratos", __name__, budget=budget, cell_size=cell, label=label,
-                        refine=refine, reach=reach,
+                        refine=refine, reach=reach, requires=missing,
+                        scope="static frictionless normal contact, identical or dissimilar "
+                        "materials, load P; declines friction, wear and the approach held",
                         style={"color": "C9", "ls": "--", "marker": "D", "ms": 3})
 
 

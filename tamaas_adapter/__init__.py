@@ -47,20 +47,32 @@ def refine_grid(case: Case, factor: float) -> Case:
     return refine(case, factor)
 
 
-def _record(name: str, suffix: str, style: dict) -> SolverRecord | None:
+def missing() -> str | None:
+    """Why the plugins cannot run here (Tamaas not installed), None if they can."""
     if importlib.util.find_spec("tamaas") is None:
-        return None  # the [peers] extra is not installed: no plugin
+        return "Tamaas is not installed: pip install 'contact-vv[peers]'"
+    return None
+
+
+#: what the plugins model (tamaas_adapter/support.py says why not, case by case)
+SCOPE = ("static normal contact and partial slip under a tangential load, isotropic "
+         "friction; declines wear, orthotropic friction, dissimilar materials with "
+         "friction, and the approach or a shift held")
+
+
+def _record(name: str, suffix: str, style: dict) -> SolverRecord:
     return SolverRecord(name, __name__, budget=grid_budget, refine=refine_grid,
                         solve_attr="solve" + suffix, supports_attr="supports" + suffix,
-                        estimate_attr="estimate" + suffix, style=style)
+                        estimate_attr="estimate" + suffix, requires=missing, scope=SCOPE,
+                        style=style)
 
 
-def record() -> SolverRecord | None:
+def record() -> SolverRecord:
     """The ``tamaas`` solver (DC-FFT normal contact, PolonskyKeerTan partial slip)."""
     return _record("tamaas", "", {"color": "C5", "ls": "-", "marker": "v", "ms": 3})
 
 
-def record_periodic() -> SolverRecord | None:
+def record_periodic() -> SolverRecord:
     """The ``tamaas_periodic`` solver (the periodic operator on the case grid)."""
     return _record("tamaas_periodic", "_periodic",
                    {"color": "C6", "ls": "-.", "marker": "x", "ms": 3})

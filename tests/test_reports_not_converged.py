@@ -66,6 +66,7 @@ def test_a_declared_quantity_is_shown_not_gated(tmp_path, skewed):
     p = m[m["quantity"] == "p_max"].iloc[0]
     assert p["value"] == pytest.approx(SKEW / (1.0 + 0.0), rel=1e-9)  # compared, written
     assert p["status"] == "not converged" and p["note"].startswith("declared: made up")
+    assert p["reason"] == "declared" and (m.loc[m["status"] == "gated", "reason"] == "").all()
     stream = io.StringIO()
     assert run_gate(out, stream=stream, verbose=True) == 0
     printed = stream.getvalue()
@@ -187,3 +188,28 @@ def test_a_pair_tolerance_key_can_be_set_from_quick_and_the_command_line(tmp_pat
     assert load_case(case, quick=True)[0].tolerances == {"ic-fem.p_n_l2": 0.07}
     got = load_case(case, overrides={"tolerances.fem-analytic.p_x_max": 0.3})[0]
     assert got.tolerances == {"fem-analytic.p_x_max": 0.3}
+
+
+def test_the_reason_column_is_read_checked(tmp_path, skewed):
+    """metrics.csv's ``reason`` (issue 76, point 2): a file written before the column reads
+    its rows not gated as unrecorded; a code outside the closed set, or one on a gated
+    row, is a damaged file."""
+    import pandas as pd
+
+    from reports.store.readers import Malformed
+
+    out = tmp_path / "res"
+    assert run(str(write_case(tmp_path, DECLARED)), "--out", str(out)) == 0
+    path = out / "small" / layout.METRICS
+    frame = pd.read_csv(path, keep_default_na=False)
+    old = tmp_path / "old.csv"
+    frame.drop(columns="reason").to_csv(old, index=False)
+    m = read_metrics(old)
+    assert set(m.loc[m["status"] != "gated", "reason"]) == {"unrecorded"}
+    for k, code in ((frame.index[frame["status"] != "gated"][0], "made up"),
+                    (frame.index[frame["status"] == "gated"][0], "floor")):
+        bad = frame.copy()
+        bad.loc[k, "reason"] = code
+        bad.to_csv(old, index=False)
+        with pytest.raises(Malformed, match="column 'reason'"):
+            read_metrics(old)

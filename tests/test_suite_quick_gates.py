@@ -321,3 +321,33 @@ def test_the_fems_work_on_every_quick_point(quick):
     for key, (dofs, m, its) in FEM_WORK.items():
         assert seen[key][:2] == (dofs, m), key
         assert seen[key][2] <= its + max(2, its // 10), (key, seen[key][2], its)
+
+
+#: the start of the note each reason's source writes (a cross-check of the codes the
+#: sources set, read here only: the suite itself never decodes a note)
+_NOTE_OF = {"declared": "declared: ", "floor": "not resolved", "grid_study": "grid study",
+            "jump_study": "jump study", "probe": "resolution probe"}
+
+
+def test_every_row_not_gated_has_its_reason(quick, capsys):
+    """metrics.csv's ``reason`` (issue 76, point 2): a code of the closed set on every row
+    not gated, set where the decision is made (its note starts as its source writes it),
+    empty on the gated rows; the gate's case lines count the rows by it."""
+    from reports.registry.tolerances import REASONS, reason_words
+
+    main(["gate", "--out", str(quick)])
+    out = capsys.readouterr().out
+    seen = set()
+    for case in scan(quick).complete:
+        m = case.metrics
+        off = m[m["status"] != "gated"]
+        assert (m.loc[m["status"] == "gated", "reason"] == "").all(), case.name
+        assert off["reason"].isin(list(REASONS)).all(), case.name
+        for r in off.itertuples():
+            if r.reason in _NOTE_OF:
+                assert r.note.startswith(_NOTE_OF[r.reason]), (case.name, r.reason, r.note)
+        seen |= set(off["reason"])
+        line = next(x for x in out.splitlines() if x.startswith(f"  {case.name}: "))
+        for code, n in off["reason"].value_counts().items():
+            assert f"{reason_words(code)} {n}" in line, line
+    assert {"floor", "edge_band", "stick_band"} <= seen, seen

@@ -35,6 +35,8 @@ def cmd_list(args: argparse.Namespace) -> int:
         ok, reason = solvers.available(s)
         kind = " (plugin: runs only when named)" if s in solvers.PLUGINS else ""
         print(f"solver {s:9s} {'available' if ok else 'unavailable: ' + reason}{kind}")
+        if scope := solvers.record(s).scope:
+            print(f"       {'':9s} models {scope}")
     return 0
 
 
@@ -130,7 +132,7 @@ def _serial(args: argparse.Namespace) -> bool:
     if args.workers is None:
         from reports.run.cluster import cores
 
-        args.workers = min(args.default_workers, cores())
+        args.workers, args.workers_defaulted = min(args.default_workers, cores()), True
     if args.workers < 0:
         raise UserError("--workers must be >= 0")
     return args.workers == 0 and not args.scheduler
@@ -140,13 +142,15 @@ def check_workers(args: argparse.Namespace, plans: list[Any]) -> None:
     """UserError, before any worker starts, when ``--workers`` asks for more workers than
     the machine allows for ``plans`` (:func:`reports.run.cluster.worker_cap`, in 90 % of
     the memory available now: ``--max-memory`` bounds one run), saying how many it
-    would."""
+    would; the command's default (``--workers`` not given) is lowered to the cap."""
     if _serial(args) or args.scheduler or args.workers <= 1:
         return
     from reports.run.cluster import worker_cap
     from reports.run.plan import available_memory
 
     cap, why = worker_cap(plans, 0.9 * available_memory())
+    if args.workers > cap and getattr(args, "workers_defaulted", False):  # as many as fit
+        args.workers = cap
     if args.workers > cap:
         raise UserError(f"--workers {args.workers}: this machine allows at most {cap} "
                         f"({why})")

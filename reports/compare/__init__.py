@@ -3,7 +3,6 @@ face is the modules the other rooms import (``__all__``;
 ``tests/test_suite_public_api.py`` keeps it true); the others are its own."""
 
 __all__ = [
-    "maxima",
     "metrics",
     "point",
     "sampling",

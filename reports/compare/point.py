@@ -35,8 +35,9 @@ from reports.registry.resolution import (
 
 #: metrics written beside a gated one but never gated: -> (the gated metric whose
 #: tolerance they are shown against, why they are not gated)
-_SHOWN = {KINK: ("max", KINK_NOTE), maxima.EDGE: ("rel", maxima.EDGE_NOTE),
-          maxima.SURFACE: ("rel", maxima.SURFACE_NOTE)}
+_SHOWN = {KINK: ("max", KINK_NOTE, "stick_band"),
+          maxima.EDGE: ("rel", maxima.EDGE_NOTE, "edge_band"),
+          maxima.SURFACE: ("rel", maxima.SURFACE_NOTE, "surface")}
 
 
 def pair_cell(case: Case, a: str, b: str) -> float:
@@ -112,13 +113,14 @@ def point_rows(case: Case, results: Mapping[str, RunResult], probed: bool = Fals
                 shown = None if exact else _SHOWN.get(metric)  # a band's max, never gated
                 limit, key = tol.tolerance(
                     case, pair, quantity, _SHOWN[metric][0] if metric in _SHOWN else metric)
-                status, note = tol.status(case, quantity)
+                status, note, reason = tol.status(case, quantity)
                 coarse = unresolved(quantity, metric, wear_resolution
                                     if quantity in PROBED_FLOORS else resolution)
                 if status == tol.GATED and (shown or coarse):
-                    status, note = tol.NOT_CONVERGED, coarse or shown[1]
+                    status = tol.NOT_CONVERGED
+                    note, reason = (coarse, "floor") if coarse else shown[1:]
                 records.append({
-                    "status": status, "note": note,
+                    "status": status, "note": note, "reason": reason,
                     "quantity": quantity, "pair": pair, "metric": metric, "value": value,
                     "tolerance": limit, "case": case.name, "param": case.param, "step": n,
                     "s": scalar(sb, "s"), "cycle": scalar(sb, "cycle"),

@@ -35,7 +35,7 @@ from reports.registry import tolerances as tol
 #: the contract columns of metrics.csv, then those the comparisons add
 METRICS_COLUMNS = ["quantity", "pair", "metric", "value", "tolerance", "passed"]
 EXTRA_COLUMNS = ["case", "param", "step", "s", "cycle", "tolerance_key", "status", "note",
-                 "oracle"]
+                 "reason", "oracle"]
 
 
 @dataclass(frozen=True)
@@ -46,6 +46,8 @@ class Flags:
     dropped: Mapping[int, Sequence[str]] = field(default_factory=dict)
     kept: Mapping[int, Sequence[str]] = field(default_factory=dict)
     late: bool = False  # applied after the uncertainty (step 3 of the module doc)
+    #: the ``reason`` of a row it drops (a code of reports.registry.tolerances.REASONS)
+    reason: str = "study"
 
 
 @dataclass(frozen=True)
@@ -64,12 +66,15 @@ def _flag(out: pd.DataFrame, flags: Flags) -> None:
     """Apply a study's :class:`Flags` in place: a dropped row is not gated, and every
     flagged row's note names the study's findings after any earlier reason."""
     status, note = out.columns.get_loc("status"), out.columns.get_loc("note")
+    reason = out.columns.get_loc("reason")
     for k in sorted(set(flags.dropped) | set(flags.kept)):
         dropped, kept = list(flags.dropped.get(k, ())), list(flags.kept.get(k, ()))
         if not (dropped or kept):
             continue
         old = str(out.iat[k, note]) if out.iat[k, status] == tol.NOT_CONVERGED else ""
         if dropped:
+            if out.iat[k, status] != tol.NOT_CONVERGED:  # the first reason stays
+                out.iat[k, reason] = flags.reason
             out.iat[k, status] = tol.NOT_CONVERGED
         out.iat[k, note] = "; ".join([n for n in [old] if n] + dropped
                                      + [t + " (gated)" for t in kept])
@@ -92,6 +97,8 @@ def decide(rows: pd.DataFrame, evidence: Sequence[Evidence | None] = ()) -> pd.D
     doc; None: none): status, tolerance, ``tolerance_kind``, ``budget``, ``uncertainty``
     and ``passed``."""
     out = tol.with_tolerance_columns(rows).reset_index(drop=True)
+    if "reason" not in out.columns:  # rows built without it: the codes of their status
+        out["reason"] = np.where(out["status"] == tol.GATED, "", tol.UNRECORDED)
     for f in evidence:
         if isinstance(f, Flags) and not f.late:
             _flag(out, f)

@@ -81,6 +81,9 @@ class SolverRecord:
     #: why the solver cannot run on this machine (a program it drives is missing, and
     #: how to get it), None when it can; checked before any entry point is used
     requires: Callable[[], str | None] | None = None
+    #: what the solver models and declines, one line for ``contact-vv list`` (its
+    #: ``supports`` says why on each case)
+    scope: str = ""
 
     def stress_reach(self, case: Case) -> float:
         """:attr:`reach` of ``case``, else its cell (NaN: a closed form's, none)."""

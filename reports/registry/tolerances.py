@@ -205,12 +205,35 @@ def check_keys(case: Case, solver_names: list[str]) -> None:
 #: the ``status`` of a metric row
 GATED, NOT_CONVERGED = "gated", "not converged"
 
+#: why a metric row is shown and not gated: the closed set of metrics.csv's ``reason``
+#: codes (set where the decision is made, never read back from the note), each with the
+#: words the gate's case line, the report and the baselines name it by
+REASONS = {
+    "declared": "declared",  # the case file's [not_converged] (status below)
+    "floor": "below a resolution floor",  # reports.registry.resolution
+    "stick_band": "stick band",  # reports.compare.metrics (KINK_NOTE)
+    "edge_band": "edge band",  # reports.compare.maxima (EDGE_NOTE)
+    "surface": "maximum on the surface",  # reports.compare.maxima (SURFACE_NOTE)
+    "grid_study": "grid study",  # reports.studies.gridstudy
+    "jump_study": "jump study",  # reports.studies.jumpstudy
+    "probe": "resolution probe",  # reports.studies.probe
+    "study": "a study",  # a study that names no code of its own (reports.studies.study)
+}
+#: the reason of a row metrics.csv holds without one (written before the column)
+UNRECORDED = "unrecorded"
 
-def status(case: Case, quantity: str) -> tuple[str, str]:
-    """(status, note) of a quantity's metric rows from the case file."""
+
+def reason_words(code: str) -> str:
+    """The words of a ``reason`` code (:data:`REASONS`)."""
+    return REASONS.get(code, "reason not recorded" if code in ("", UNRECORDED) else code)
+
+
+def status(case: Case, quantity: str) -> tuple[str, str, str]:
+    """(status, note, reason) of a quantity's metric rows from the case file."""
     if quantity in case.not_converged:
-        return NOT_CONVERGED, "declared: " + " ".join(case.not_converged[quantity].split())
-    return GATED, ""
+        return (NOT_CONVERGED,
+                "declared: " + " ".join(case.not_converged[quantity].split()), "declared")
+    return GATED, "", ""
 
 
 #: ``tolerance_kind`` of a metric row: the pair's default (the sum of its two budgets), a

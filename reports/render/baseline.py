@@ -4,7 +4,8 @@ of new results from them.
 ``contact-vv gate --update-baseline DIR`` writes ``DIR/<case>.csv`` (one row per case,
 solver, sweep point and output step; the columns of :data:`KEYS`) and
 ``DIR/gated/<case>.csv`` (one row per metric row: :data:`ROW_INDEX`, whether it is gated
-and, when it is not, its reason, :func:`reports.render.reasons.reason_of`) from the
+and, when it is not, its reason in words,
+:func:`reports.registry.tolerances.reason_words`) from the
 results; ``contact-vv gate --baseline DIR`` fails on any key number that drifted from its
 baseline by more than ``--drift`` (relative, default 1e-6), on a baseline row missing
 from the results, on a result row or case missing from the baselines, and on a metric
@@ -25,7 +26,7 @@ import numpy as np
 import pandas as pd
 
 from reports.registry.errors import UserError
-from reports.render.reasons import reason_of
+from reports.registry.tolerances import reason_words
 from reports.store.readers import DamagedResult, Malformed, gated, read_csv, read_result
 from reports.store.results import Scan
 
@@ -56,10 +57,10 @@ def gated_rows(results: Scan) -> dict[str, pd.DataFrame]:
     for case in results.complete:
         m = case.metrics
         on = gated(m).to_numpy(bool)
-        notes = m["note"] if "note" in m.columns else pd.Series("", index=m.index)
         frame = m[ROW_INDEX].assign(
             param=m["param"].fillna("").astype(str), gated=on,
-            reason=["" if g else reason_of(n) for g, n in zip(on, notes, strict=True)])
+            reason=["" if g else reason_words(r) for g, r in zip(on, m["reason"],
+                                                                  strict=True)])
         out[case.name] = frame.sort_values(ROW_INDEX, kind="stable").reset_index(drop=True)
     return out
 

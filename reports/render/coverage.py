@@ -7,8 +7,9 @@ load), in ``partial slip`` (a tangential load or shift) or in ``full sliding``;
 ``fretting partial slip`` (a stick zone in the half-space solver's step, else the
 reference's); ``worn fretting`` from the second cycle on.  The kind of reference is the
 row's ``oracle`` (closed form, other solver, metamorphic relation).  A cell with rows
-and none gated says why: the notes of its rows (a resolution floor, a band, a study), the
-most frequent first.  In the report's index and in ``benchmarks/README.md``; the quick
+and none gated says why: its rows counted by ``reason`` (a resolution floor, a band, a
+study; the codes of metrics.csv, in words), the most frequent first, and the most
+frequent note.  In the report's index and in ``benchmarks/README.md``; the quick
 chain's table is held by ``tests/test_suite_quick_gates.py``.
 """
 
@@ -57,14 +58,23 @@ def regime(point: dict, summary: pd.DataFrame, param: str, step: int, cycle: flo
 def _case_rows(case: CaseResults) -> pd.DataFrame:
     m = case.metrics
     if m.empty:
-        return pd.DataFrame(columns=[*COLUMNS[:3], "status", "note"])
+        return pd.DataFrame(columns=[*COLUMNS[:3], "status", "reason", "note"])
     summary = case.summary.assign(param=case.summary["param"].astype(object).fillna(""))
     params = m["param"].astype(object).fillna("")
     regimes = [regime(case.point(p), summary, p, int(s), float(c))
                for p, s, c in zip(params, m["step"], m["cycle"], strict=True)]
     return pd.DataFrame({"regime": regimes, "quantity": m["quantity"],
                          "oracle": m["oracle"], "status": m["status"],
-                         "note": m["note"].astype(object).fillna("")})
+                         "reason": m["reason"], "note": m["note"].astype(object).fillna("")})
+
+
+def _why(rows: pd.DataFrame) -> str:
+    """Why none of ``rows`` is gated: their counts by reason, and the most frequent note."""
+    counts = Counter(rows["reason"]).most_common()
+    note = next(iter(Counter(_REF.sub("", n) for n in rows["note"] if n).most_common(1)),
+                ("", 0))[0]
+    return ", ".join(f"{tol.reason_words(r)} {n}" for r, n in counts) + \
+        (f": {note}" if note else "")
 
 
 def table(results: Scan) -> pd.DataFrame:
@@ -79,8 +89,7 @@ def table(results: Scan) -> pd.DataFrame:
     order = {q: i for i, q in enumerate(tol.QUANTITY_METRICS)}
     for (reg, q, oracle), g in rows.groupby(["regime", "quantity", "oracle"]):
         on = g["status"] == tol.GATED
-        why = "" if on.any() else "; ".join(
-            n for n, _ in Counter(_REF.sub("", n) for n in g["note"] if n).most_common(2))
+        why = "" if on.any() else _why(g)
         out.append({"regime": reg, "quantity": q, "oracle": oracle, "rows": len(g),
                     "gated": int(on.sum()), "why": why})
     df = pd.DataFrame(out, columns=COLUMNS)

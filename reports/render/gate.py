@@ -26,8 +26,7 @@ import pandas as pd
 
 from reports.registry import solvers
 from reports.registry.errors import RunFailed, UserError
-from reports.registry.tolerances import UNCERTAINTY
-from reports.render.reasons import reason_of
+from reports.registry.tolerances import UNCERTAINTY, reason_words
 from reports.render.threshold_gate import threshold_gate
 from reports.store.layout import METRICS, THRESHOLDS
 from reports.store.readers import gated, ungated
@@ -171,18 +170,17 @@ def stale_case_file(mf: dict) -> bool:
 
 def case_line(case: CaseResults) -> str:
     """One line of a case: its gated rows passed, those shown but not gated by reason,
-    and the solvers not run."""
+    and the solvers not run that it was asked for (:attr:`CaseResults.not_run`)."""
     m = case.metrics
     on = gated(m)
     passed = int((m["passed"].astype(bool) & on).sum()) if len(m) else 0
     text = f"  {case.name}: {passed}/{int(on.sum())} passed"
     if len(m) and (~on).any():
-        counts = pd.Series([reason_of(n) for n in m.loc[~on, "note"]]).value_counts()
+        counts = m.loc[~on, "reason"].map(reason_words).value_counts()
         text += f", {int((~on).sum())} not gated (" + ", ".join(
             f"{k} {v}" for k, v in counts.items()) + ")"
-    skipped = list(case.manifest.get("skipped", {}))
-    if skipped:
-        text += f"; not run: {', '.join(skipped)}"
+    if case.not_run:
+        text += f"; not run: {', '.join(case.not_run)}"
     return text
 
 
@@ -214,7 +212,7 @@ def headline(results: Scan, table: pd.DataFrame, found: list[str]) -> str:
     return (f"gate: {len(results.complete)} case(s), {n_ok}/{len(table) - n_off} metric(s) "
             "passed" + (f" ({n_u} against the combined uncertainty of grid studies)"
                         if n_u else "")
-            + (f", {n_off} not gated (not converged)" if n_off else "")
+            + (f", {n_off} shown and not gated" if n_off else "")
             + f", {len(found)} problem(s): " + ("FAILED" if found else "PASSED"))
 
 

@@ -73,11 +73,13 @@ def _header(case: CaseResults) -> list[str]:
              f"solvers {escape(', '.join(mf.get('solvers', [])))}"
              + (" (quick grids)" if mf.get("quick") else "") + "</p>"]
     skipped = mf.get("skipped", {})
-    if skipped:  # one line, the reasons one click away
+    if skipped:  # one line of those asked for, every reason one click away
         reasons = "".join(f"<li><b>{escape(s)}</b>: {escape(r)}</li>"
                           for s, r in skipped.items())
-        parts.append(f'<details class="not-run"><summary>not run: '
-                     f'{escape(", ".join(skipped))}</summary><ul>{reasons}</ul></details>')
+        asked = ", ".join(case.not_run) or "none of the solvers asked for"
+        parts.append(f'<details class="not-run"><summary>not run: {escape(asked)} '
+                     f'({len(skipped)} declined or unavailable)</summary><ul>{reasons}</ul>'
+                     '</details>')
     bad = not_converged(case.summary)
     if not bad.empty:
         parts.append(f'<p class="warn bad">{len(bad)} output step(s) did not converge</p>')

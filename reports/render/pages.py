@@ -46,7 +46,7 @@ from reports.studies import gridstudy
 from reports.studies.gridstudy import GRID_STUDY
 from reports.studies.jumpstudy import JUMP_STUDY
 
-PAGES = "_report"  # the case pages' directory under DIR
+PAGES = layout.REPORT_PAGES  # the case pages' directory under DIR
 _STAGING = f".{PAGES}.partial"
 _STAGING_OLD = f".{PAGES}.old-"  # replaced pages on their way out (staging.remove_dir)
 #: the title every report index has: an ``index.html`` without it is not one (kept)
@@ -87,7 +87,7 @@ def case_row(case: CaseResults) -> CaseRow:
                  if len(gridstudy.unsettled(t))]
     return CaseRow(case.name, f"{PAGES}/{case.name}.html", n_on - n_ok, n_ok, n_on,
                    len(m) - n_on, len(not_converged(case.summary)), ", ".join(unsettled),
-                   ", ".join(case.manifest.get("skipped", {})))
+                   ", ".join(case.not_run))
 
 
 def externalise(page: str, folder: Path, prefix: str) -> str:
@@ -177,7 +177,7 @@ def render_index(results: Scan, out: Path, rows: list[CaseRow]) -> str:
     found = problems(results) + threshold_gate(out)[0]
     table = metrics_table(results)
     n_on = int(gated(table).sum()) if not table.empty else 0
-    off = f", {len(table) - n_on} not converged and not gated" if n_on < len(table) else ""
+    off = f", {len(table) - n_on} shown and not gated" if n_on < len(table) else ""
     unreported = [*results.incomplete.items(),
                   *((k, f"damaged: {v}") for k, v in results.damaged.items())]
     return _ENV.get_template("index.html.j2").render(

@@ -148,6 +148,15 @@ class CasePlan:
     def applicable(self, case: Case) -> list[str]:
         return [s for s in self.solvers if solvers.unsupported(s, case) is None]
 
+    def not_run(self) -> dict[str, str]:
+        """The skipped solvers a user would miss, with why: those chosen for the run
+        (named, or run by default) that declined the case, and the built-in solvers that
+        run by default and could not; not the plugins nobody named, nor the metamorphic
+        relations that do not apply to the case (:attr:`skipped` holds every one)."""
+        return {s: why for s, why in self.skipped.items()
+                if not solvers.record(s).base
+                and (s in self.solvers or s not in solvers.PLUGINS)}
+
     def own(self) -> Own:
         """The run's own units as its studies see them (before any work)."""
         return Own(self.points, self.units(), self.applicable)

@@ -196,6 +196,7 @@ def _manifest_body(plan: CasePlan, got: _Collected, t0: float, unit_wall: float,
                         hertz_p0=c.hertz_scales[1]) for c in plan.points],
         "solvers": plan.solvers,
         "skipped": plan.skipped,
+        "not_run": plan.not_run(),
         "units": got.records,
         "wall_s": time.perf_counter() - t0,
         "unit_wall_s": unit_wall,
@@ -262,29 +263,37 @@ def _execute(plan: CasePlan, out: Path, executor: Executor, progress: bool | Non
             _discard(staging, run)
         return run
 
-    summary = summary_frame([r for key in sorted(got.rows) for r in got.rows[key]])
-    for study, found in evidence:
-        write_csv(staging / layout.study_file(study.name), found.table)
-        summary = study.summary(summary, found.table)
-    write_csv(staging / layout.SUMMARY, summary)
-    if got.events:  # some solver watched for regime events (reports.store.event_table)
-        write_csv(staging / layout.EVENTS,
-                  events_frame([r for key in sorted(got.events) for r in got.events[key]]))
-    parts = [got.metrics[i] for i in sorted(got.metrics) if not got.metrics[i].empty]
-    if parts:  # the verdict, once, with the studies' evidence
-        rows = pd.concat(parts, ignore_index=True)
-        metrics = verdict.decide(rows, [f for study, found in evidence
-                                         for f in study.evidence(rows, found, own)])
-    else:  # a single solver: the header only
-        metrics = pd.DataFrame(columns=verdict.METRICS_COLUMNS + (
-            TOLERANCE_COLUMNS if evidence else []))
-    write_csv(staging / layout.METRICS, metrics)
-    body = _manifest_body(plan, got, t0, unit_wall, sources)
-    for planned in plan.studies:
-        entry = planned.study.manifest(plan.own(), list(planned.runs))
-        if entry is not None:
-            body[planned.study.name] = entry
-    manifest.write(staging, {**body, **extra_manifest})
+    try:  # the case's tables and manifest
+        summary = summary_frame([r for key in sorted(got.rows) for r in got.rows[key]])
+        for study, found in evidence:
+            write_csv(staging / layout.study_file(study.name), found.table)
+            summary = study.summary(summary, found.table)
+        write_csv(staging / layout.SUMMARY, summary)
+        if got.events:  # some solver watched for regime events (reports.store.event_table)
+            write_csv(staging / layout.EVENTS,
+                      events_frame([r for key in sorted(got.events) for r in got.events[key]]))
+        parts = [got.metrics[i] for i in sorted(got.metrics) if not got.metrics[i].empty]
+        if parts:  # the verdict, once, with the studies' evidence
+            rows = pd.concat(parts, ignore_index=True)
+            metrics = verdict.decide(rows, [f for study, found in evidence
+                                             for f in study.evidence(rows, found, own)])
+        else:  # a single solver: the header only
+            metrics = pd.DataFrame(columns=verdict.METRICS_COLUMNS + (
+                TOLERANCE_COLUMNS if evidence else []))
+        write_csv(staging / layout.METRICS, metrics)
+        body = _manifest_body(plan, got, t0, unit_wall, sources)
+        for planned in plan.studies:
+            entry = planned.study.manifest(plan.own(), list(planned.runs))
+            if entry is not None:
+                body[planned.study.name] = entry
+        manifest.write(staging, {**body, **extra_manifest})
+    except OSError as exc:
+        if not disk_full(exc):
+            raise
+        run.failures = [f"{plan.name}: the disk is full: the case's tables could not be "
+                        f"written ({disk_error(exc)})"]
+        _discard(staging, run)
+        return run
     remove_dir(final)
     os.replace(staging, final)
     run.path, run.metrics = final, metrics

@@ -145,7 +145,8 @@ _TYPES: dict[str, tuple[type, ...]] = {
     "case": (str,), "dir": (str,), "kind": (str,), "description": (str,),
     "case_file": (str,), "case_sha256": (str, type(None)), "quick": (bool,),
     "overrides": (dict, type(None)), "params": (list,), "points": (list,),
-    "solvers": (list,), "skipped": (dict,), "units": (list,), "wall_s": _NUMBER,
+    "solvers": (list,), "skipped": (dict,), "not_run": (dict,), "units": (list,),
+    "wall_s": _NUMBER,
     "unit_wall_s": _NUMBER, "provenance": (dict,), "sources": (dict, type(None)),
     "sources_changed_during_run": (bool,), "files": (dict,),
 }

@@ -24,6 +24,8 @@ from reports.registry.tolerances import (
     GATED,
     KINDS,
     NOT_CONVERGED,
+    REASONS,
+    UNRECORDED,
     passes,
     with_tolerance_columns,
 )
@@ -209,7 +211,7 @@ def read_metrics(path: Path) -> pd.DataFrame:
     ``passed_recorded``."""
     frame = read_csv(path, required=METRICS_REQUIRED,
                      text=("quantity", "pair", "metric", "param", "case", "tolerance_key",
-                           "status", "note", "tolerance_kind"),
+                           "status", "note", "reason", "tolerance_kind"),
                      numeric=("value", "tolerance", "s", "cycle", "budget", "uncertainty"),
                      integer=["step"])
     missing = [c for c in ("param", "step") if c not in frame.columns]
@@ -235,6 +237,7 @@ def read_metrics(path: Path) -> pd.DataFrame:
                         f"{i + 1}), not {GATED!r} or {NOT_CONVERGED!r}")
     frame["status"] = status
     frame["note"] = frame["note"].fillna("") if "note" in frame.columns else ""
+    _reason_column(frame)
     if "oracle" not in frame.columns:  # a file an older run wrote: from its pairs
         frame["oracle"] = [solvers.oracle(str(p)) for p in frame["pair"]]
     frame = with_tolerance_columns(frame)
@@ -245,6 +248,23 @@ def read_metrics(path: Path) -> pd.DataFrame:
                         f"{str(frame['tolerance_kind'].iloc[i])[:40]!r} (data row {i + 1}), "
                         f"not one of {', '.join(KINDS)}")
     return frame
+
+
+def _reason_column(frame: pd.DataFrame) -> None:
+    """Check ``reason`` in place: a code of :data:`REASONS` on every row not gated, empty
+    on the gated ones; a file written before the column gets :data:`UNRECORDED`."""
+    on = (frame["status"] == GATED).to_numpy()
+    if "reason" not in frame.columns:
+        frame["reason"] = np.where(on, "", UNRECORDED)
+        return
+    reason = frame["reason"].fillna("").astype(str)
+    bad = np.where(on, reason != "", ~reason.isin(list(REASONS)))
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        raise Malformed(f"column 'reason' holds {reason.iloc[i][:40]!r} (data row {i + 1}) "
+                        "on a row " + ("gated: it must be empty" if on[i] else
+                                       f"not gated: not one of {', '.join(REASONS)}"))
+    frame["reason"] = reason
 
 
 def gated(metrics: pd.DataFrame) -> pd.Series:

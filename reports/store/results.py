@@ -60,6 +60,13 @@ class CaseResults:
     def name(self) -> str:
         return str(self.manifest.get("dir") or self.manifest.get("case") or self.path.name)
 
+    @property
+    def not_run(self) -> dict[str, str]:
+        """The solvers the run was asked for (or runs by default) that did not run, with
+        why (:meth:`reports.run.plan.CasePlan.not_run`; a manifest written before it:
+        every solver skipped)."""
+        return dict(self.manifest.get("not_run", self.manifest.get("skipped", {})))
+
     def _step_files(self, solver: str, param: str) -> dict[int, Path]:
         folder = layout.unit_dir(self.path, solver, param)
         return {_step_number(f): f for f in sorted(folder.glob("step_*.npz"))}

@@ -83,6 +83,7 @@ class Kind:
     symbol: str = "h"
     unit: str = " mm"
     cell: str = "h1"
+    reason: str = "grid_study"  # the reason of a row it drops (tolerances.REASONS)
 
 
 GRID = Kind()
@@ -223,7 +224,7 @@ def flags(metrics: pd.DataFrame, frame: pd.DataFrame, kind: Kind = GRID) -> Flag
                     f"{r.f3:.6g} on {kind.symbol} = {r.h1:.4g}, {r.h2:.4g}, "
                     f"{r.h3:.4g}{kind.unit}, {order}, spread {versus}")
             (dropped if width > limit else kept).setdefault(k, []).append(text)
-    return Flags(dropped, kept)
+    return Flags(dropped, kept, reason=kind.reason)
 
 
 def note_lines(case: str, frame: pd.DataFrame, kind: Kind = GRID) -> list[str]:

@@ -56,7 +56,7 @@ RATIO = 2.0
 #: the summary.csv column naming the quantities of a row that did not converge in J
 FLAG_COLUMN = "jump_not_converged"
 #: how its rows read in notes: sizes are jumps J in cycles; budgets in cells use the grid
-JUMP = Kind(label="jump", symbol="J", unit=" cycles", cell="cell_size")
+JUMP = Kind(label="jump", symbol="J", unit=" cycles", cell="cell_size", reason="jump_study")
 
 
 def not_studied(solver: str, case: Case) -> str | None:
@@ -157,7 +157,8 @@ class JumpStudy:
         """The jumps' flags (:func:`reports.studies.gridstudy.flags`; budgets in cells use
         the run's grid), after the uncertainty."""
         found = flags(rows, evidence.table, JUMP)
-        return [] if found is None else [Flags(found.dropped, found.kept, late=True)]
+        return [] if found is None else [Flags(found.dropped, found.kept, late=True,
+                                                   reason=JUMP.reason)]
 
     def manifest(self, own: Own, runs: list[StudyRun]) -> dict[str, Any]:
         """The ratio, the quantities and, per (point, solver), the jumps studied or why

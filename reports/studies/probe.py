@@ -106,7 +106,7 @@ def flags(metrics: pd.DataFrame, table: pd.DataFrame,
         elif math.isfinite(limit) and not float(found.sensitivity) <= FRACTION * limit:
             dropped[k] = [note(float(found.sensitivity), limit, float(found.width),
                                float(found.spread))]
-    return Flags(dropped=dropped)
+    return Flags(dropped=dropped, reason="probe")
 
 
 def note(sensitivity: float, limit: float, width: float, spread: float) -> str:
