@@ -25,7 +25,7 @@ import numpy as np
 
 from cases.model import Case
 from cases.result import Cost, RunResult, StepResult, semi_widths
-from reports.registry.record import SolverRecord
+from reports.plugin import SolverRecord
 
 __all__ = ["record", "solve", "supports", "by_default", "estimate"]
 
@@ -33,14 +33,14 @@ __all__ = ["record", "solve", "supports", "by_default", "estimate"]
 def grid_budget(quantity: str, metric: str) -> float:
     """ContactMechanics holds the pressure on the case's cells as the half-space solver
     does: the grid solvers' budget (:func:`reports.registry.solvers.grid_budget`)."""
-    from reports.registry.solvers import grid_budget as budget  # not at plugin load
+    from reports.plugin import grid_budget as budget  # not at plugin load
 
     return budget(quantity, metric)
 
 
 def refine_grid(case: Case, factor: float) -> Case:
     """The case grid refined by ``factor`` (:func:`reports.registry.discretisation.refine_grid`)."""
-    from reports.registry.discretisation import refine_grid as refine  # not at plugin load
+    from reports.plugin import refine_grid as refine  # not at plugin load
 
     return refine(case, factor)
 

@@ -26,7 +26,7 @@ from importlib import metadata
 
 from cases.model import Case
 from cases.result import Cost, RunResult, StepResult
-from reports.registry.record import SolverRecord
+from reports.plugin import SolverRecord
 
 from .support import supports
 
@@ -80,7 +80,7 @@ def budget(quantity: str, metric: str) -> float:
     (:func:`reports.registry.solvers.grid_budget`)."""
     if (quantity, metric) in BUDGET:
         return BUDGET[(quantity, metric)]
-    from reports.registry.solvers import grid_budget  # not at plugin load
+    from reports.plugin import grid_budget  # not at plugin load
 
     return grid_budget(quantity, metric)
 
@@ -109,7 +109,7 @@ def refine(case: Case, factor: float) -> Case:
     """The same case with elements ``factor`` times smaller: ``fem.h`` scaled
     (:func:`reports.registry.discretisation.refine_fem`; the plugin meshes at
     :data:`kratos_adapter.run.H_FACTOR` times it)."""
-    from reports.registry.discretisation import refine_fem  # not at plugin load
+    from reports.plugin import refine_fem  # not at plugin load
 
     return refine_fem(case, factor)
 

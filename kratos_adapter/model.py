@@ -24,7 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from reports.registry.plugins import silenced
+from reports.plugin import silenced
 
 from .mesh import Body
 

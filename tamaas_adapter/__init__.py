@@ -23,7 +23,7 @@ from collections.abc import Callable
 
 from cases.model import Case
 from cases.result import Cost, RunResult, StepResult
-from reports.registry.record import SolverRecord
+from reports.plugin import SolverRecord
 
 from .support import supports, supports_periodic
 
@@ -34,7 +34,7 @@ __all__ = ["record", "record_periodic", "solve", "solve_periodic", "supports",
 def grid_budget(quantity: str, metric: str) -> float:
     """Tamaas discretises the tractions on the case's cells as the half-space solver
     does: the grid solvers' budget (:func:`reports.registry.solvers.grid_budget`)."""
-    from reports.registry.solvers import grid_budget as budget  # not at plugin load
+    from reports.plugin import grid_budget as budget  # not at plugin load
 
     return budget(quantity, metric)
 
@@ -42,7 +42,7 @@ def grid_budget(quantity: str, metric: str) -> float:
 def refine_grid(case: Case, factor: float) -> Case:
     """The case grid refined by ``factor``, as for the half-space solver's grid studies
     (:func:`reports.registry.discretisation.refine_grid`)."""
-    from reports.registry.discretisation import refine_grid as refine  # not at plugin load
+    from reports.plugin import refine_grid as refine  # not at plugin load
 
     return refine(case, factor)
 

@@ -26,7 +26,7 @@ import numpy as np
 
 from cases.model import Case
 from cases.result import RunResult, StepResult, semi_widths, vm_max_location
-from reports.registry.plugins import silenced
+from reports.plugin import silenced
 
 from . import volume
 

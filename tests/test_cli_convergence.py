@@ -291,7 +291,7 @@ def test_coarse_runs_write_no_fields_and_leave_the_results_unchanged(studied, tm
                                                                            rel=1e-9)
     assert ma.loc[tightened, "budget"].to_numpy(float) == pytest.approx(0.035)
     assert ma.loc[tightened, "value"].to_numpy(float) == pytest.approx(e, rel=1e-6)
-    same = ["status", "note", "tolerance", "tolerance_kind", "uncertainty"]
+    same = ["status", "note", "reason", "tolerance", "tolerance_kind", "uncertainty"]
     pd.testing.assert_frame_equal(ma.drop(columns=same), mb.drop(columns=same))
     assert not (plain / "small" / "convergence.csv").exists()
     # a re-run over a result with convergence.csv replaces it (its own file)

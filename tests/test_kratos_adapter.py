@@ -22,6 +22,7 @@ import kratos_adapter
 from kratos_adapter import fields, mesh
 from kratos_adapter import run as kratos_run
 from reports.cli import main
+from reports.registry.errors import SolverUnavailable
 from reports.render.pages import report_text
 from reports.store import layout
 
@@ -98,19 +99,23 @@ def test_declined_cases_say_why():
     assert kratos_adapter.by_default(load_bundled("hertz", quick=True)) is not None
 
 
-def test_no_kratos_no_plugin(monkeypatch):
-    """Without the extra the entry point offers nothing (and imports no Kratos)."""
+def test_no_kratos_the_plugin_is_offered_unavailable(monkeypatch):
+    """Without the extra the entry point offers the record, unavailable with how to get
+    it (``contact-vv list`` names it; issue 76, point 7), and imports no Kratos."""
     real = importlib.util.find_spec
     monkeypatch.setattr(importlib.util, "find_spec",
                         lambda name, *a: None if name == "KratosMultiphysics" else real(name, *a))
-    assert kratos_adapter.record() is None
+    record = kratos_adapter.record()
+    assert record.name == "kratos" and "pip install 'contact-vv[kratos]'" in record.requires()
+    with pytest.raises(SolverUnavailable, match="Kratos is not installed"):
+        record.entry("solve")
     monkeypatch.setattr(importlib.util, "find_spec", real)
 
     def missing(name):
         raise metadata.PackageNotFoundError(name)
 
     monkeypatch.setattr(metadata, "version", missing)
-    assert kratos_adapter.record() is None
+    assert "Kratos is not installed" in kratos_adapter.record().requires()
 
 
 @needs_kratos

@@ -25,6 +25,10 @@ FACES = {
                       "estimate", "read_vtu", "solve", "supports", "write_vtu"],
     "reports": ["CaseRun", "RunFailed", "SolverRecord", "UserError", "compare_point", "main",
                 "run_case", "run_gate", "traction_profiles", "write_report"],
+    # the face of a solver plugin (issue 76, point 3)
+    "reports.plugin": ["Case", "CaseError", "Cost", "Plane", "RunResult", "SolverRecord",
+                       "SolverUnavailable", "StepResult", "UserError", "grid_budget",
+                       "refine_fem", "refine_grid", "silenced"],
 }
 #: the rooms, whose faces are their modules that other rooms import
 ROOMS = ["reports.registry", "reports.store", "reports.compare", "reports.studies",

@@ -13,7 +13,7 @@ import math
 import numpy as np
 
 from cases import Case, RunResult, StepResult
-from reports import SolverRecord
+from reports.plugin import SolverRecord
 
 #: p0 is multiplied by this; a test sets 1.1 to show the gates catch a wrong solver
 SCALE = 1.0

@@ -1,0 +1,45 @@
+"""One face for plugins (issue 76, point 3): ``reports.plugin`` holds every name a solver
+plugin needs from the suite, each resolving to where it lives, and the bundled adapters
+and the plugin example import nothing else of ``reports``; the face itself imports only
+the registry and ``cases`` (its names are resolved when first used, so a plugin's record
+can be built while the registry loads it)."""
+
+from __future__ import annotations
+
+import ast
+import importlib
+from pathlib import Path
+
+import pytest
+
+import reports.plugin as face
+
+ROOT = Path(__file__).resolve().parents[1]
+PLUGINS = ["tamaas_adapter", "contactmechanics_adapter", "kratos_adapter",
+           "calculix_adapter", "docs/examples/solver_plugin/hertz_example"]
+
+
+def _reports_imports(folder: Path) -> list[str]:
+    out = []
+    for path in sorted(folder.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                     [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level
+                     else [])
+            out += [f"{path.relative_to(ROOT)}: {n}" for n in names
+                    if n.split(".")[0] == "reports" and n != "reports.plugin"]
+    return out
+
+
+@pytest.mark.parametrize("plugin", PLUGINS)
+def test_a_bundled_plugin_imports_only_the_plugin_face(plugin):
+    assert _reports_imports(ROOT / plugin) == []
+
+
+def test_every_name_of_the_face_resolves_where_it_lives():
+    for name, home in face.HOMES.items():
+        assert getattr(face, name) is getattr(importlib.import_module(home), name), name
+        assert home.split(".")[0] == "cases" or home.startswith("reports.registry."), home
+    assert sorted(face.__all__) == sorted(face.HOMES)
+    with pytest.raises(AttributeError):
+        face.no_such_name  # noqa: B018
