@@ -131,21 +131,26 @@ def test_external_results_read_files_with_the_cases_package_only():
     assert bad == []
 
 
+def absolute_imports(folder: Path) -> list[tuple[Path, str]]:
+    """(file, module) of every absolute import of the Python files under ``folder``."""
+    out = []
+    for path in sorted(folder.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
+                     [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level
+                     else [])
+            out += [(path, n) for n in names]
+    return out
+
+
 @pytest.mark.parametrize("package", ["kratos_adapter", "calculix_adapter"])
 def test_the_finite_element_plugins_share_no_solver_code(package):
     """kratos_adapter and calculix_adapter are second FEM references (issues 60, 74):
     their agreement with fem_reference is evidence only if they share no mesh, contact,
     kernel or stress code with fem_reference, halfspace or analytic (the case model, the
     result container and the registry's record are the shared pieces)."""
-    plugin = ROOT / package
-    bad = []
-    for path in sorted(plugin.rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
-                     [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level
-                     else [])
-            bad += [f"{path.name}: {n}" for n in names
-                    if n.split(".")[0] in ("fem_reference", "halfspace", "analytic")]
+    bad = [f"{path.name}: {n}" for path, n in absolute_imports(ROOT / package)
+           if n.split(".")[0] in ("fem_reference", "halfspace", "analytic")]
     assert bad == []
 
 

@@ -6,11 +6,11 @@ can be built while the registry loads it)."""
 
 from __future__ import annotations
 
-import ast
 import importlib
 from pathlib import Path
 
 import pytest
+from test_suite_architecture import absolute_imports
 
 import reports.plugin as face
 
@@ -19,21 +19,11 @@ PLUGINS = ["tamaas_adapter", "contactmechanics_adapter", "kratos_adapter",
            "calculix_adapter", "docs/examples/solver_plugin/hertz_example"]
 
 
-def _reports_imports(folder: Path) -> list[str]:
-    out = []
-    for path in sorted(folder.rglob("*.py")):
-        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-            names = ([a.name for a in node.names] if isinstance(node, ast.Import) else
-                     [node.module or ""] if isinstance(node, ast.ImportFrom) and not node.level
-                     else [])
-            out += [f"{path.relative_to(ROOT)}: {n}" for n in names
-                    if n.split(".")[0] == "reports" and n != "reports.plugin"]
-    return out
-
-
 @pytest.mark.parametrize("plugin", PLUGINS)
 def test_a_bundled_plugin_imports_only_the_plugin_face(plugin):
-    assert _reports_imports(ROOT / plugin) == []
+    bad = [f"{path.relative_to(ROOT)}: {n}" for path, n in absolute_imports(ROOT / plugin)
+           if n.split(".")[0] == "reports" and n != "reports.plugin"]
+    assert bad == []
 
 
 def test_every_name_of_the_face_resolves_where_it_lives():
