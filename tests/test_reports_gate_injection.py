@@ -60,14 +60,14 @@ from reports.registry import solvers
 from reports.registry.tolerances import (
     EXCESS,
     LAW,
-    NOT_CONVERGED,
+    NOT_GATED,
     OWN_ALLOWANCE,
     OWN_RELATIONS,
     PEAK,
     QUANTITY_METRICS,
     tolerance_key,
 )
-from reports.store.study_tables import CONVERGED
+from reports.store.study_tables import CONVERGED, UNSETTLED
 from reports.studies import gridstudy, uncertainty
 from reports.studies.jumpstudy import JUMP_STUDY
 from reports.studies.study import Own, StudyTable
@@ -447,7 +447,7 @@ def test_the_verdict_flips_at_the_tolerance(kind, pair_kind, source, tmp_path):
         if pair_kind != "metamorphic relation":  # an exact relation gates the bands too
             shown = {key: st for key, (_, _, st, _, _) in rows.items()
                      if key[1] in SHOWN_METRICS}
-            assert set(shown.values()) <= {NOT_CONVERGED}, f"a band's max gated: {shown}"
+            assert set(shown.values()) <= {NOT_GATED}, f"a band's max gated: {shown}"
 
 
 #: a partial slip whose slip zone (Q = 0.1 μP: a − c = 0.035 a, under half a cell) is
@@ -468,9 +468,9 @@ COUPLED_CASE = SLIP_CASE.with_changes(
 RULES = {
     "declared": (SLIP_CASE, ("p_max", "rel"), "declared: measured elsewhere",
                  {("p_n", "l2"), ("a_x", "cells")}),
-    "grid": (SLIP_CASE, ("p_max", "rel"), "grid study: ic not converged",
+    "grid": (SLIP_CASE, ("p_max", "rel"), "grid study: ic unsettled",
              {("p_n", "max"), ("a_x", "cells")}),
-    "jump": (FRETTING_CASE, ("wear_volume", "rel"), "jump study: ic not converged",
+    "jump": (FRETTING_CASE, ("wear_volume", "rel"), "jump study: ic unsettled",
              {("p_n", "l2"), ("loop_q", "max")}),
     "resolution": (NARROW_SLIP_CASE, ("p_x", "l2"), "slip zone",
                    {("stick_area", "cells"), ("p_n", "l2"), ("a_x", "cells")}),
@@ -497,12 +497,12 @@ def test_each_not_converged_rule_shows_its_row_and_gates_the_companions(rule):
     else:
         ruled = case
     if rule in ("grid", "jump"):  # three values 20 % apart: beyond every budget
-        study = _study(case, pair, kind, tol, _step(good), status=NOT_CONVERGED,
+        study = _study(case, pair, kind, tol, _step(good), status=UNSETTLED,
                        f=(1.0, 1.2, 1.4))
     rows = _rows(ruled, pair, tested, good, study, rule)
     value, _, status, _, note = rows[kind]
     assert value == pytest.approx(1.5 * tol, rel=1e-6)
-    assert status == NOT_CONVERGED and words in note, (status, note)
+    assert status == NOT_GATED and words in note, (status, note)
     failed = {key for key, (_, _, st, ok, _) in rows.items() if st == "gated" and not ok}
     # the friction law is exact at any resolution: the traction scaled in the narrow
     # slip zone leaves the ellipse, and it fails there, where the field's norm cannot

@@ -95,7 +95,7 @@ def test_report_and_gate(studied):
     out = studied.parent
     stream = io.StringIO()
     assert run_gate(out, stream=stream) == 0
-    assert "NOT CONVERGED (jump)" not in stream.getvalue()  # gross slip: all converged
+    assert "UNSETTLED (jump)" not in stream.getvalue()  # gross slip: all converged
     assert main(["report", "--out", str(out)]) == 0
     html = report_text(out)
     sec = html.split('id="jump-fretting_orthotropic"')[1].split("</div>")[0]
@@ -112,18 +112,18 @@ def test_a_damaged_table_is_refused(studied, tmp_path):
 
 
 def test_not_converged_in_j_is_flagged_not_gated(studied):
-    """A metric whose study (either solver) is not converged and spreads by more than the
+    """A metric whose study (either solver) is unsettled and spreads by more than the
     budget is not gated, with the three jumps and values in its note."""
     js = study_tables.read_jump_study(studied / "jump_study.csv")
     row = js[(js["quantity"] == "w_max") & (js["cycle"] == 2000.0)].iloc[[0]].copy()
-    row["status"], row["f1"] = "not converged", 2 * row["f3"].iloc[0]
+    row["status"], row["f1"] = "unsettled", 2 * row["f3"].iloc[0]
     metrics = pd.DataFrame([{"param": "beta=0", "step": int(row["step"].iloc[0]),
                              "pair": "ic-fem", "quantity": "w_max", "metric": "rel",
                              "value": 0.01, "tolerance": 0.1, "status": "gated",
                              "note": ""}])
     flagged = decide(metrics, late(metrics, row))
-    assert flagged["status"].iat[0] == "not converged"
-    assert flagged["note"].iat[0].startswith("jump study: ic not converged, f = ")
+    assert flagged["status"].iat[0] == "not gated"
+    assert flagged["note"].iat[0].startswith("jump study: ic unsettled, f = ")
     assert "on J = 125, 250, 500 cycles" in flagged["note"].iat[0]
     assert decide(metrics, late(metrics, js))["status"].iat[0] == "gated"
 
@@ -142,7 +142,7 @@ def test_no_cycle_jump_is_an_error(tmp_path, capsys, case, needle):
 
 def test_a_failed_level_leaves_the_quantity_not_converged():
     """A run at J/2 or J/4 that fails (contact at the grid edge, no convergence) is no
-    evidence: the rows say which level failed and why, and are not converged."""
+    evidence: the rows say which level failed and why, and are unsettled."""
     from reports.run.plan import plan_case
 
     plan = plan_case("fretting_orthotropic", ["ic"], quick=True,
@@ -157,5 +157,5 @@ def test_a_failed_level_leaves_the_quantity_not_converged():
     table = JUMP_STUDY.table(mine, runs, levels).table.set_index("cycle")
     assert list(table["quantity"]) == ["w_max", "w_max"]
     assert table.loc[2000.0, "change_halved"] == pytest.approx(0.1, rel=1e-12)
-    assert (table["status"] == "not converged").all()
+    assert (table["status"] == "unsettled").all()
     assert (table["note"] == "J/4 failed (failed: edge)").all()

@@ -1,8 +1,9 @@
-"""A study is one protocol (reports.studies.study): a fourth study, registered by one line
+"""A study is one base class (reports.studies.study.Study): a fourth study, registered by one line
 in reports.studies.registry.STUDIES, runs, writes its table, adds its summary column,
 folds its evidence into the verdict, records its manifest entry, speaks in the gate and
-is read back by name, with no other file touched; the three bundled studies keep their
-order whatever order a run asks for them in."""
+is read back by name, with no other file touched; a study implements only what it does
+(the base's defaults for the rest); the three bundled studies keep their order whatever
+order a run asks for them in."""
 
 from __future__ import annotations
 
@@ -18,16 +19,15 @@ from reports.compare.verdict import Evidence, Flags
 from reports.run.plan import plan_case, request_study
 from reports.store.results import read_case
 from reports.studies import registry
-from reports.studies.study import Check, Levels, Own, StudyRun, StudyTable
+from reports.studies.study import Check, Levels, Own, Study, StudyRun, StudyTable
 
 
-class Repeat:
+class Repeat(Study):
     """A trivial study: every ``ic`` unit runs once more, unchanged; its table holds the
     change of P between the two runs (zero for a deterministic solver), and its evidence
     drops the P rows of the pairs with ``ic`` (to see the fold)."""
 
-    name, option, label = "repeat", None, "repeat"
-    keeps_results, table_without_runs = False, False
+    name, label = "repeat", "repeat"
 
     def plan(self, own: Own, check: Check) -> list[StudyRun]:
         runs = [StudyRun(i, s, 0, own.points[i]) for i, s in own.units if s == "ic"]
@@ -65,8 +65,24 @@ class Repeat:
     def nothing_planned(self, owns: list[Own]) -> str:
         return "no ic run"
 
-    def idle_note(self, own: Own) -> str | None:
-        return None
+
+class Bare(Study):
+    """A study with only the four methods the base leaves to it: no runs, an empty table,
+    no evidence."""
+
+    name, label = "bare", "bare"
+
+    def plan(self, own: Own, check: Check) -> list[StudyRun]:
+        return []
+
+    def table(self, own: Own, runs: list[StudyRun], levels: Levels) -> StudyTable:
+        return StudyTable(pd.DataFrame())
+
+    def evidence(self, rows: pd.DataFrame, table: StudyTable, own: Own) -> list[Evidence]:
+        return []
+
+    def nothing_planned(self, owns: list[Own]) -> str:
+        return "nothing to do"
 
 
 @pytest.fixture
@@ -99,7 +115,7 @@ def test_a_fourth_study_is_one_module_and_one_line(tmp_path, monkeypatch, fourth
     assert (result.summary["repeat_seen"] == 1).all()
     m = result.metrics
     p_rows = m[(m["quantity"] == "P") & (m["pair"] == "ic-analytic")]
-    assert len(p_rows) > 0 and (p_rows["status"] == "not converged").all()
+    assert len(p_rows) > 0 and (p_rows["status"] == "not gated").all()
     assert p_rows["note"].str.contains("repeat study: dropped").all()
     others = m[(m["quantity"] != "P") & (m["pair"] == "ic-analytic")]
     assert (others["status"] == "gated").any()
@@ -119,3 +135,25 @@ def test_the_studies_keep_the_registrys_order():
     names = [p.study.name for p in a[0].studies]
     assert names == [p.study.name for p in b[0].studies] == ["convergence", "jump_study"]
     assert a[0].study_runs() == b[0].study_runs()
+
+
+def test_a_study_implements_only_what_it_does():
+    """The base's defaults: no manifest keys per run, summary unchanged, no manifest
+    entry, no gate notes, no idle note, asked for by no flag; a study that leaves out one
+    of the four methods it must implement cannot be made."""
+    study = Bare()
+    summary = pd.DataFrame({"step": [0, 1]})
+    own = Own(points=[], units=[], applicable=lambda case: [])
+    assert study.describe(StudyRun(0, "ic", 0, None)) == {}
+    assert study.summary(summary, pd.DataFrame()) is summary
+    assert study.manifest(own, []) is None
+    assert study.notes("c", pd.DataFrame()) == []
+    assert study.idle_note(own) is None
+    assert (study.option, study.keeps_results, study.table_without_runs) == (None, False, False)
+
+    class NoEvidence(Study):
+        name, label = "partial", "partial"
+        plan, table, nothing_planned = Bare.plan, Bare.table, Bare.nothing_planned
+
+    with pytest.raises(TypeError, match="evidence"):
+        NoEvidence()

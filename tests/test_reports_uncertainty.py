@@ -67,7 +67,7 @@ def test_each_study_status_gives_its_documented_uncertainty():
     assert osc["status"] == "oscillating"
     assert uncertainty.solver_uncertainty(pd.Series(osc)) == pytest.approx(3 * 0.5 / 100.0)
     grow = study_row("ic", "vm_max", (1.0, 0.9, 0.85))  # differences grow: no number
-    assert grow["status"] == "not converged"
+    assert grow["status"] == "unsettled"
     assert math.isnan(uncertainty.solver_uncertainty(pd.Series(grow)))
     assert math.isnan(uncertainty.solver_uncertainty(None))
 
@@ -114,7 +114,7 @@ def test_unmeasured_model_form_and_ungated_rows_keep_their_tolerance():
     frame = pd.DataFrame([study_row("ic", "w_max", order_two(1e-3, 0.002)),
                           study_row("fem", "w_max", order_two(1e-3, 0.003))])
     m = metrics(metric_row("ic-fem", "w_max", 0.001, 0.08))
-    m.loc[0, "status"] = "not converged"
+    m.loc[0, "status"] = "not gated"
     out = apply(m, frame)
     assert math.isnan(out["uncertainty"].iloc[0])  # ungated: no tolerance to set
     out = apply(metrics(metric_row("ic-fem", "w_max", 0.001, 0.08)), frame)

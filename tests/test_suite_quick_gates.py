@@ -240,7 +240,7 @@ def test_the_probe_admits_the_global_loads_and_the_early_wear_in_partial_slip(qu
     probed = found.study("probe")
     assert set(probed["param"]) == {"beta=0", "beta=90", "beta=60"}
     shown = m[m["note"].str.contains("resolution probe: ", na=False)]
-    assert len(shown) > 0 and (shown["status"] == "not converged").all()
+    assert len(shown) > 0 and (shown["status"] == "not gated").all()
     html = report_text(quick) if (quick / "index.html").exists() else ""
     if not html:
         assert main(["report", "--out", str(quick)]) == 0
@@ -351,3 +351,19 @@ def test_every_row_not_gated_has_its_reason(quick, capsys):
         for code, n in off["reason"].value_counts().items():
             assert f"{reason_words(code)} {n}" in line, line
     assert {"floor", "edge_band", "stick_band"} <= seen, seen
+
+
+def test_not_converged_names_only_solver_runs(quick, capsys):
+    """One word per meaning (issue 76, point 1): in everything the gate prints on the quick
+    chain, ``--verbose`` included, "not converged" is said only of a solver run that did
+    not converge (``NOT CONVERGED <case> [param] step N solver S``); a row shown and not
+    gated says why by its note, a study's quantity that does not settle is "unsettled"."""
+    import re
+
+    main(["gate", "--out", str(quick), "--verbose"])
+    captured = capsys.readouterr()
+    said = [line for line in (captured.out + captured.err).splitlines()
+            if "not converged" in line.lower()]
+    run_line = re.compile(r"NOT CONVERGED \S+( \[[^\]]+\])? step \d+ solver \S+")
+    assert all(run_line.fullmatch(line.strip()) for line in said), said
+    assert "NOT GATED " in captured.out  # the rows not gated are printed, by their notes

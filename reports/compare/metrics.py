@@ -40,7 +40,8 @@ a field held at points h apart and interpolated between them misses it by O(√(
 μp₀ whatever the solver, so the max norm across it measures the node spacing, not the
 solver (Cattaneo–Mindlin, Q/μP = 0.25, exact Mindlin sampled at the FEM's nodes and
 interpolated: 0.266 at a0/8, 0.177 at a0/12, 0.092 at a0/24).  The max over the band is
-still written, as the metric ``kink``, and is not gated (status "not converged"); the
+still written, as the metric ``kink``, and is not gated (status "not gated", reason
+``stick_band``); the
 tractions' L2 norms (under the slip zone's resolution floor, :mod:`reports.registry.
 resolution`) and the stick-zone radius (``stick_area``) still measure the boundary.  The
 planes' L2 norms leave the band out too: they have no such floor, and where the slip

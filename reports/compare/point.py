@@ -117,7 +117,7 @@ def point_rows(case: Case, results: Mapping[str, RunResult], probed: bool = Fals
                 coarse = unresolved(quantity, metric, wear_resolution
                                     if quantity in PROBED_FLOORS else resolution)
                 if status == tol.GATED and (shown or coarse):
-                    status = tol.NOT_CONVERGED
+                    status = tol.NOT_GATED
                     note, reason = (coarse, "floor") if coarse else shown[1:]
                 records.append({
                     "status": status, "note": note, "reason": reason,

@@ -8,7 +8,7 @@ row, a σ_VM maximum whose location is not determined) and the tolerance of its 
 order, each group in the order of the studies' list:
 
 1. the grid study (``run --convergence``): rows of a quantity that the grids do not
-   settle beyond the solver's budget become "not converged" (:class:`Flags`,
+   settle beyond the solver's budget become "not gated" (:class:`Flags`,
    :func:`reports.studies.gridstudy.flags`);
    the resolution probe of worn points (:func:`reports.studies.probe.flags`): rows of a
    quantity that a step spread over the FEM's element moves by more than half their
@@ -71,11 +71,11 @@ def _flag(out: pd.DataFrame, flags: Flags) -> None:
         dropped, kept = list(flags.dropped.get(k, ())), list(flags.kept.get(k, ()))
         if not (dropped or kept):
             continue
-        old = str(out.iat[k, note]) if out.iat[k, status] == tol.NOT_CONVERGED else ""
+        old = str(out.iat[k, note]) if out.iat[k, status] == tol.NOT_GATED else ""
         if dropped:
-            if out.iat[k, status] != tol.NOT_CONVERGED:  # the first reason stays
+            if out.iat[k, status] != tol.NOT_GATED:  # the first reason stays
                 out.iat[k, reason] = flags.reason
-            out.iat[k, status] = tol.NOT_CONVERGED
+            out.iat[k, status] = tol.NOT_GATED
         out.iat[k, note] = "; ".join([n for n in [old] if n] + dropped
                                      + [t + " (gated)" for t in kept])
 

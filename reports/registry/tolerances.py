@@ -60,7 +60,7 @@ also leave out the *stick band*, the points within one cell (the coarser solver'
 cell) of either solver's stick–slip boundary, where the traction has a √(c − r) kink
 that no field held at points h apart follows (docs/formulation.md §2.7): the max over
 that band is written as the metric ``kink`` beside the max's tolerance, with status
-"not converged", and is never gated (it has no tolerance key);
+"not gated", and is never gated (it has no tolerance key);
 ``rel`` = |A − B| / |B|; for ``loop_q`` ``max`` = max over the cycle's loop points of
 |Q_A − Q_B| (the tangential load vector on body a) / μP, μ the friction coefficient along
 the path direction and P the case's Hertz load (:func:`reports.compare.metrics.friction_scale`),
@@ -75,8 +75,9 @@ Tolerance keys: the quantity name for a single-metric quantity (``p_max``, ``a_x
 pair and a dot (``"ic-fem.p_max"``, a quoted TOML key) it applies to that pair only.
 Lookup order: pair-specific key in the case, plain key in the case, default of the pair.
 
-Not converged.  A quantity that is not a converged number is compared and shown but not
-gated: its metric rows carry ``status`` "not converged" and a ``note`` saying why.  The
+Not gated.  A quantity that is not a converged number is compared and shown but not
+gated: its metric rows carry ``status`` "not gated", a ``reason`` code and a ``note``
+saying why.  The
 code decides it from the run, with a converged companion gated in its place: the
 maxima over the stick band (``kink``) and over the edge band (``vm_max`` ``edge``), a
 σ_VM maximum near the surface (``vm_max`` ``surface``, companion ``vm_max_below``,
@@ -202,8 +203,10 @@ def check_keys(case: Case, solver_names: list[str]) -> None:
                         "surface layer, is the one kept where vm_max does not converge)")
 
 
-#: the ``status`` of a metric row
-GATED, NOT_CONVERGED = "gated", "not converged"
+#: the ``status`` of a metric row: gated, or shown and not gated (why: its ``reason``)
+GATED, NOT_GATED = "gated", "not gated"
+#: the ``status`` earlier releases wrote for a row not gated, read as :data:`NOT_GATED`
+OLD_STATUS = {"not converged": NOT_GATED}
 
 #: why a metric row is shown and not gated: the closed set of metrics.csv's ``reason``
 #: codes (set where the decision is made, never read back from the note), each with the
@@ -231,7 +234,7 @@ def reason_words(code: str) -> str:
 def status(case: Case, quantity: str) -> tuple[str, str, str]:
     """(status, note, reason) of a quantity's metric rows from the case file."""
     if quantity in case.not_converged:
-        return (NOT_CONVERGED,
+        return (NOT_GATED,
                 "declared: " + " ".join(case.not_converged[quantity].split()), "declared")
     return GATED, "", ""
 

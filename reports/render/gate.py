@@ -11,7 +11,7 @@ the tolerance's source and where the report shows it), then one line per case (i
 counts, the rows shown but not gated by reason, the solvers not run), and the notes
 that may change what the numbers mean (a case file or solver source changed since the
 run).  ``--verbose`` adds the whole metrics table, every ``NOT GATED …`` row with its
-value and reason, the grid and jump studies' ``NOT CONVERGED …`` notes with their three
+value and reason, the grid and jump studies' ``UNSETTLED …`` notes with their three
 values and every solver not run with why.  Neither a not-gated row nor a study note
 fails the gate.  ``--junit FILE`` also writes the verdict as JUnit XML
 (:mod:`reports.render.junit`)."""
@@ -89,11 +89,13 @@ def metric_problems(case: CaseResults, report: Path | None = None) -> list[str]:
 
 
 def ungated_lines(case: CaseResults) -> list[str]:
-    """One ``NOT GATED …`` note per quantity of a case that is not converged
-    (:func:`reports.store.readers.ungated`), with its largest value and the reason."""
+    """One ``NOT GATED …`` note per quantity of a case shown and not gated
+    (:func:`reports.store.readers.ungated`), with its largest value and why (its note; the
+    words of its reason where it has none)."""
     return [f"NOT GATED {case.name} {r.pair} {r.quantity} {r.metric} ({r.rows} row(s), "
             f"largest {_num(float(r.value))} at {_where('', r.param, r.step).strip()}): "
-            f"not converged; {r.note}" for r in ungated(case.metrics).itertuples(index=False)]
+            f"{r.note or reason_words(r.reason)}"
+            for r in ungated(case.metrics).itertuples(index=False)]
 
 
 def uncompared_lines(case: CaseResults) -> list[str]:

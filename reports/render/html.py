@@ -174,7 +174,7 @@ def _metrics(case: CaseResults) -> list[str]:
             parts.append(table_html(_worst(m[on]), status="passed", left=4))
         if n_on < len(m):
             parts.append(
-                f'<p class="bad">Not converged, so not gated ({len(m) - n_on} rows): the '
+                f'<p class="bad">Shown and not gated ({len(m) - n_on} rows): the '
                 "largest value of each, and why (a band's maximum, a maximum near the "
                 "surface, a zone narrower than the resolution floor, a grid or jump study "
                 "with its three values, or declared in the case file).</p>")

@@ -44,7 +44,7 @@ def convergence_section(case: CaseResults) -> list[str]:
         cls = "ok" if bad.empty else "bad"
         names = escape(", ".join(dict.fromkeys(bad["quantity"])))
         parts.append(f'<p class="{cls}">{len(study) - len(bad)} / {len(study)} quantities '
-                     "converged or exact" + (f"; {len(bad)} not converged (flagged, their "
+                     "converged or exact" + (f"; {len(bad)} unsettled (flagged, their "
                                              "metrics not gated): " + names if len(bad)
                                              else "") + "</p>")
         table = table_html(study, left=5, row_class=_study_row_class)
@@ -86,7 +86,7 @@ def jump_section(case: CaseResults) -> list[str]:
         "p and Richardson-extrapolated value f_ext from the three.</p>")
     cls = "ok" if bad.empty else "bad"
     parts.append(f'<p class="{cls}">{len(study) - len(bad)} / {len(study)} quantities '
-                 "converged or exact" + (f"; {len(bad)} not converged (flagged, their "
+                 "converged or exact" + (f"; {len(bad)} unsettled (flagged, their "
                                          "metrics not gated beyond their budget): "
                                          + escape(", ".join(dict.fromkeys(bad["quantity"])))
                                          if len(bad) else "") + "</p>")

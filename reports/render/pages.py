@@ -81,9 +81,9 @@ def case_row(case: CaseResults) -> CaseRow:
     n_on = int(on.sum())
     n_ok = int((on & m["passed"].astype(bool)).sum()) if n_on else 0
     unsettled = [f"{len(gridstudy.unsettled(t))} {what}"
-                 for t, what in ((case.study(GRID_STUDY.name), "not grid-converged"),
+                 for t, what in ((case.study(GRID_STUDY.name), "unsettled on the grids"),
                                  (case.study(JUMP_STUDY.name),
-                                  "not converged in the cycle jump"))
+                                  "unsettled in the cycle jump"))
                  if len(gridstudy.unsettled(t))]
     return CaseRow(case.name, f"{PAGES}/{case.name}.html", n_on - n_ok, n_ok, n_on,
                    len(m) - n_on, len(not_converged(case.summary)), ", ".join(unsettled),

@@ -23,7 +23,8 @@ from reports.registry.errors import IncompleteRun
 from reports.registry.tolerances import (
     GATED,
     KINDS,
-    NOT_CONVERGED,
+    NOT_GATED,
+    OLD_STATUS,
     REASONS,
     UNRECORDED,
     passes,
@@ -230,11 +231,12 @@ def read_metrics(path: Path) -> pd.DataFrame:
     frame["passed"] = passes(frame["value"], frame["tolerance"])
     status = frame["status"].fillna("").replace("", GATED) if "status" in frame.columns \
         else pd.Series(GATED, index=frame.index, dtype=object)
-    bad = ~status.isin([GATED, NOT_CONVERGED])
+    status = status.replace(OLD_STATUS)  # as an earlier release wrote it
+    bad = ~status.isin([GATED, NOT_GATED])
     if bad.any():
         i = int(np.flatnonzero(bad.to_numpy())[0])
         raise Malformed(f"column 'status' holds {str(status.iloc[i])[:40]!r} (data row "
-                        f"{i + 1}), not {GATED!r} or {NOT_CONVERGED!r}")
+                        f"{i + 1}), not {GATED!r} or {NOT_GATED!r}")
     frame["status"] = status
     frame["note"] = frame["note"].fillna("") if "note" in frame.columns else ""
     _reason_column(frame)
@@ -269,7 +271,7 @@ def _reason_column(frame: pd.DataFrame) -> None:
 
 def gated(metrics: pd.DataFrame) -> pd.Series:
     """Which metric rows are gated (``status`` "gated", as :func:`read_metrics` and the
-    comparisons write it; not those of a quantity that is not converged,
+    comparisons write it; not those shown and not gated, with their ``reason``,
     :mod:`reports.registry.tolerances`)."""
     if "status" not in metrics.columns:
         return pd.Series(True, index=metrics.index)

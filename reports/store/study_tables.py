@@ -15,10 +15,13 @@ import pandas as pd
 from reports.store import layout
 from reports.store.readers import Malformed, read_csv, read_result, read_table
 
-#: statuses of a three-level study (:func:`reports.studies.three_level.classify`)
-CONVERGED, OSCILLATING, NOT_CONVERGED, EXACT = "converged", "oscillating", "not converged", \
-    "exact"
-STATUSES = (CONVERGED, OSCILLATING, NOT_CONVERGED, EXACT)
+#: statuses of a three-level study (:func:`reports.studies.three_level.classify`):
+#: ``unsettled``, a quantity the study does not find converging (not a solver run that did
+#: not converge)
+CONVERGED, OSCILLATING, UNSETTLED, EXACT = "converged", "oscillating", "unsettled", "exact"
+STATUSES = (CONVERGED, OSCILLATING, UNSETTLED, EXACT)
+#: the status earlier releases wrote for :data:`UNSETTLED`, read as it
+OLD_STATUS = {"not converged": UNSETTLED}
 #: the columns of ``convergence.csv``; the first 14 required
 CONVERGENCE_COLUMNS = ["solver", "param", "step", "quantity", "h1", "h2", "h3", "f1", "f2",
                        "f3", "order", "f_extrapolated", "gci_fine", "status", "gci_coarse",
@@ -41,6 +44,7 @@ def read_study(path: Path, columns: list[str], required: list[str]) -> pd.DataFr
     frame = read_csv(path, required=required, text=text,
                      numeric=[c for c in columns if c not in (*text, "step")],
                      integer=["step"])
+    frame["status"] = frame["status"].replace(OLD_STATUS)  # as an earlier release wrote it
     bad = ~frame["status"].isin(STATUSES)
     if bad.any():
         i = int(bad.to_numpy().nonzero()[0][0])

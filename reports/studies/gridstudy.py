@@ -24,19 +24,19 @@ output step (matched by step number) and every studied scalar (:data:`STUDIED`) 
 holds the three cell sizes and values (finest first), the observed order, the
 Richardson-extrapolated value, Roache's GCI of the finest grid (Fs = 1.25, a relative
 uncertainty of f1) and of the coarser pair, the asymptotic-range ratio and a status
-(:func:`reports.studies.three_level.classify`: ``converged``, ``oscillating``, ``not converged``
+(:func:`reports.studies.three_level.classify`: ``converged``, ``oscillating``, ``unsettled``
 or ``exact``) with its reason in ``note``.  ``summary.csv`` gets a last column
 :data:`FLAG_COLUMN` naming the gated quantities of each row whose study is neither
 ``converged`` nor ``exact`` (blank: none, or no study for that solver); ``gate`` prints
-them as ``NOT CONVERGED (grid) …`` notes and the report flags them; their metric rows
-(for either solver of a pair) are marked "not converged" and not gated
+them as ``UNSETTLED (grid) …`` notes and the report flags them; their metric rows
+(for either solver of a pair) are marked "not gated" with the reason ``grid_study``
 (:func:`flags`): a number without a converged value is shown, not compared.
 
 Only the spatial discretisation changes: the time or sliding step, the stress-output
 layers (``stress.nz``) and, for the FEM, the block and the surface grid it is sampled
 on stay as in the case.  A coarse run that fails (did not converge, contact reaching the
-grid edge) does not fail the case: its quantities are ``not converged`` with the cause
-in ``note``.
+grid edge) does not fail the case: its quantities are ``unsettled`` with the cause in
+``note``.
 """
 
 from __future__ import annotations
@@ -56,7 +56,7 @@ from reports.registry.tolerances import budget
 from reports.store.study_tables import CONVERGED, CONVERGENCE_COLUMNS, EXACT
 from reports.store.write import jsonable
 from reports.studies import three_level, uncertainty
-from reports.studies.study import Check, Levels, Own, StudyRun, StudyTable
+from reports.studies.study import Check, Levels, Own, Study, StudyRun, StudyTable
 
 #: the smallest refinement ratio between consecutive grids
 RATIO = 1.5
@@ -166,7 +166,7 @@ def unsettled(frame: pd.DataFrame) -> pd.DataFrame:
 def flag_summary(summary: pd.DataFrame, frame: pd.DataFrame,
                  column: str = FLAG_COLUMN) -> pd.DataFrame:
     """``summary`` with the last column ``column``: the space-separated studied
-    quantities of each (solver, param, step) that are not converged ('' if none)."""
+    quantities of each (solver, param, step) that are unsettled ('' if none)."""
     bad: dict[tuple[str, str, int], list[str]] = {}
     for r in unsettled(frame).itertuples(index=False):
         bad.setdefault((str(r.solver), str(r.param), int(r.step)), []).append(str(r.quantity))
@@ -228,7 +228,7 @@ def flags(metrics: pd.DataFrame, frame: pd.DataFrame, kind: Kind = GRID) -> Flag
 
 
 def note_lines(case: str, frame: pd.DataFrame, kind: Kind = GRID) -> list[str]:
-    """One ``NOT CONVERGED (grid) <case> [param] step N <solver> <quantity>: …`` line per
+    """One ``UNSETTLED (grid) <case> [param] step N <solver> <quantity>: …`` line per
     quantity of a study table that is neither converged nor exact, with its three
     values (finest first), sizes and observed order: information for the gate, not a
     failure (the quantity's metric rows are not gated, :func:`flags`)."""
@@ -238,7 +238,7 @@ def note_lines(case: str, frame: pd.DataFrame, kind: Kind = GRID) -> list[str]:
         where = case + (f" [{param}]" if param else "") + f" step {int(r.step)}"
         order = f"order {r.order:.3g}" if math.isfinite(r.order) else "no order"
         lines.append(
-            f"NOT CONVERGED ({kind.label}) {where} {r.solver} {r.quantity}: {r.status}; "
+            f"UNSETTLED ({kind.label}) {where} {r.solver} {r.quantity}: {r.status}; "
             f"f = {r.f1:.6g}, {r.f2:.6g}, {r.f3:.6g} on {kind.symbol} = {r.h1:.4g}, "
             f"{r.h2:.4g}, {r.h3:.4g}{kind.unit}; {order}" + (f" ({r.note})" if r.note else ""))
     return lines
@@ -249,12 +249,12 @@ def by_step(rows: list[dict[str, Any]]) -> dict[int, dict[str, Any]]:
     return {int(r["step"]): r for r in rows}
 
 
-class GridStudy:
+class GridStudy(Study):
     """The grid studies of ``run --convergence`` (module doc) as a
     :class:`reports.studies.study.Study`."""
 
     name, option, label = "convergence", "--convergence", "grids"
-    keeps_results, table_without_runs = False, True
+    table_without_runs = True
 
     @staticmethod
     def studied(own: Own) -> list[tuple[int, str]]:
@@ -340,9 +340,6 @@ class GridStudy:
         names = sorted({s for own in owns for _, s in own.units})
         return (f"no run has a grid to refine (solver(s) {', '.join(names)}: closed forms "
                 "have none); add a numerical solver, e.g. --solver ic")
-
-    def idle_note(self, own: Own) -> str | None:
-        return None
 
 
 GRID_STUDY = GridStudy()

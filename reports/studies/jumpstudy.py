@@ -20,9 +20,9 @@ and every studied quantity (:data:`reports.studies.gridstudy.STUDIED`):
 
 The run's own results stay those of J.  ``summary.csv`` gets a last column
 :data:`FLAG_COLUMN` naming the studied quantities of a row whose study is neither
-``converged`` nor ``exact``; their metric rows are marked "not converged" and not gated
+``converged`` nor ``exact``; their metric rows are marked "not gated" (``jump_study``)
 when the three values spread by more than the solver's budget
-(:func:`reports.studies.gridstudy.flags`), and ``gate`` prints ``NOT CONVERGED (jump)``
+(:func:`reports.studies.gridstudy.flags`), and ``gate`` prints ``UNSETTLED (jump)``
 notes.  The extra runs cost 2 + 4 = 6 runs of the case (the simulated cycles double at
 each level); ``--max-hours`` and ``--max-memory`` are checked on them before any work.
 A solver without a cycle jump (a closed form, J = 1 exactly) is not studied.
@@ -49,7 +49,7 @@ from reports.studies.gridstudy import (
     study_row,
     value_of,
 )
-from reports.studies.study import Check, Levels, Own, StudyRun, StudyTable
+from reports.studies.study import Check, Levels, Own, Study, StudyRun, StudyTable
 
 #: the jump is halved from one level to the next
 RATIO = 2.0
@@ -86,12 +86,11 @@ def by_cycle(rows: list[dict[str, Any]]) -> dict[float, dict[str, Any]]:
             if r.get("cycle") is not None and math.isfinite(float(r["cycle"]))}
 
 
-class JumpStudy:
+class JumpStudy(Study):
     """The cycle-jump studies of ``run --jump-study`` (module doc) as a
     :class:`reports.studies.study.Study`."""
 
     name, option, label = "jump_study", "--jump-study", "jumps"
-    keeps_results, table_without_runs = False, False
 
     def plan(self, own: Own, check: Check) -> list[StudyRun]:
         """J/2 and J/4 of every studied unit, checked before any work (``CaseError``
@@ -176,7 +175,7 @@ class JumpStudy:
         return {"ratio": RATIO, "quantities": list(STUDIED), "units": units}
 
     def notes(self, case: str, table: pd.DataFrame) -> list[str]:
-        """``NOT CONVERGED (jump) …`` lines for the gate."""
+        """``UNSETTLED (jump) …`` lines for the gate."""
         return note_lines(case, table, JUMP)
 
     def nothing_planned(self, owns: list[Own]) -> str:

@@ -41,7 +41,7 @@ from reports.registry import solvers
 from reports.registry.pairs import pairs
 from reports.registry.resolution import PROBE_SOLVER, probed_pair, probed_width
 from reports.store.study_tables import PROBE_COLUMNS
-from reports.studies.study import Check, Levels, Own, StudyRun, StudyTable
+from reports.studies.study import Check, Levels, Own, Study, StudyRun, StudyTable
 
 #: the spread's half-width in element widths.  Measured (docs/fem-notes.md, part 5, "Why";
 #: the quick grid in ``benchmarks/README.md``, "The resolution probe"): a tent of 0.5–0.8
@@ -153,13 +153,14 @@ def table_rows(own: Own, g: ProbeRun, unit: RunResult, spread: RunResult
     return out
 
 
-class ResolutionProbe:
+class ResolutionProbe(Study):
     """The resolution probe (module doc) as a :class:`reports.studies.study.Study`: it
     runs wherever a worn point has a solver with a step width beside
-    :data:`reports.registry.resolution.PROBE_SOLVER`."""
+    :data:`reports.registry.resolution.PROBE_SOLVER`; its rows carry their own notes
+    (:func:`note`), so it has no gate notes of its own."""
 
-    name, option, label = "probe", None, "probe"
-    keeps_results, table_without_runs = True, False
+    name, label = "probe", "probe"
+    keeps_results = True
 
     def plan(self, own: Own, check: Check) -> list[StudyRun]:
         """One run of every probed point, checked like the units (``CaseError`` naming
@@ -198,24 +199,12 @@ class ResolutionProbe:
         frame = pd.DataFrame.from_records(rows, columns=PROBE_COLUMNS)
         return StudyTable(frame.astype({"step": "int64"}) if not frame.empty else frame, failed)
 
-    def summary(self, summary: pd.DataFrame, table: pd.DataFrame) -> pd.DataFrame:
-        return summary
-
     def evidence(self, rows: pd.DataFrame, evidence: StudyTable, own: Own) -> list[Evidence]:
         found = flags(rows, evidence.table, evidence.failed)
         return [] if found is None else [found]
 
-    def manifest(self, own: Own, runs: list[StudyRun]) -> None:
-        return None
-
-    def notes(self, case: str, table: pd.DataFrame) -> list[str]:
-        return []  # its rows carry their own notes (:func:`note`)
-
     def nothing_planned(self, owns: list[Own]) -> str:
         return "no worn point has a solver with a step width beside " + PROBE_SOLVER
-
-    def idle_note(self, own: Own) -> str | None:
-        return None
 
 
 PROBE = ResolutionProbe()

@@ -1,5 +1,5 @@
-"""A study of a run, as one protocol (:class:`Study`): extra runs of a case's units, a table
-built from them, and the evidence that table gives the verdict.
+"""A study of a run, as one base class with defaults (:class:`Study`): extra runs of a
+case's units, a table built from them, and the evidence that table gives the verdict.
 
 A study plans its runs before any work (:meth:`Study.plan`); the runner runs them through
 the run's executor after the case's own units, without fields
@@ -14,9 +14,10 @@ adding one is a module and a line there.
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
-from typing import Any, Protocol
+from typing import Any
 
 import pandas as pd
 
@@ -74,53 +75,56 @@ class StudyTable:
 Check = Callable[[Case, str], None]
 
 
-class Study(Protocol):
-    """One study of a run (module doc).  ``name`` is its key in the manifest and in
-    :meth:`reports.store.results.CaseResults.study`, and names its table; ``option`` is
-    the flag of ``run`` that asks for it (None: it runs wherever it plans runs);
-    ``label`` names its progress bar."""
+class Study(ABC):
+    """One study of a run (module doc), as a base with defaults: a study implements
+    :meth:`plan`, :meth:`table`, :meth:`evidence` and :meth:`nothing_planned`, and
+    overrides the others only where it adds something.  ``name`` is its key in the
+    manifest and in :meth:`reports.store.results.CaseResults.study`, and names its
+    table; ``option`` is the flag of ``run`` that asks for it (None: it runs wherever it
+    plans runs); ``label`` names its progress bar."""
 
     name: str
-    option: str | None
     label: str
-    keeps_results: bool  # it compares whole results of the run's units, not summary rows
-    table_without_runs: bool  # asked for, it writes its (empty) table even with no runs
+    option: str | None = None
+    keeps_results: bool = False  # it compares whole results of the run's units
+    table_without_runs: bool = False  # asked for, it writes its (empty) table anyway
 
+    @abstractmethod
     def plan(self, own: Own, check: Check) -> list[StudyRun]:
         """Its runs for the run's units, checked before any work (``CaseError``)."""
-        ...
 
     def describe(self, run: StudyRun) -> dict[str, Any]:
         """What the manifest's record of ``run`` says beyond the unit's own keys."""
-        ...
+        return {}
 
+    @abstractmethod
     def table(self, own: Own, runs: list[StudyRun], levels: Levels) -> StudyTable:
         """Its table from the run's own units and its runs."""
-        ...
 
     def summary(self, summary: pd.DataFrame, table: pd.DataFrame) -> pd.DataFrame:
-        """``summary.csv`` with the study's column, if it adds one."""
-        ...
+        """``summary.csv`` with the study's column, if it adds one (default: as it is)."""
+        return summary
 
+    @abstractmethod
     def evidence(self, rows: pd.DataFrame, evidence: StudyTable, own: Own) -> list[Evidence]:
         """Its evidence on the metric rows, for :func:`reports.compare.verdict.decide`."""
-        ...
 
     def manifest(self, own: Own, runs: list[StudyRun]) -> dict[str, Any] | None:
-        """The manifest's entry under :attr:`name` (None: none)."""
-        ...
+        """The manifest's entry under :attr:`name` (default None: none)."""
+        return None
 
     def notes(self, case: str, table: pd.DataFrame) -> list[str]:
-        """The gate's notes on the case from its table."""
-        ...
+        """The gate's notes on the case from its table (default: none)."""
+        return []
 
+    @abstractmethod
     def nothing_planned(self, owns: list[Own]) -> str:
         """Why no run of ``owns`` gets this study, for a user who asked for it."""
-        ...
 
     def idle_note(self, own: Own) -> str | None:
-        """A note on a case that gets no run of this study, where it deserves one."""
-        ...
+        """A note on a case that gets no run of this study, where it deserves one
+        (default None)."""
+        return None
 
 
 @dataclass(frozen=True)

@@ -20,7 +20,7 @@ J. Fluids Eng. 130 (2008) 078001; docs/formulation.md §4.1, (G1) and (G2)):
 - ``exact``: the three values agree to :data:`EXACT_REL` (a load the solver imposes, a
   quantity that is zero on every grid); no order, GCI 0;
 - ``oscillating``: the differences ε21 and ε32 change sign;
-- ``not converged``: the differences do not shrink (|ε21| ≥ |ε32|, p ≤ 0: diverging or
+- ``unsettled``: the differences do not shrink (|ε21| ≥ |ε32|, p ≤ 0: diverging or
   stalled), only the finest pair agrees (no order), a value is missing, or the
   asymptotic-range check fails: an observed order outside :data:`ORDER_RANGE` (a
   three-point fit always reproduces its own data, so an order far from what a
@@ -39,8 +39,8 @@ from dataclasses import dataclass
 from reports.store.study_tables import (  # the statuses of classify()
     CONVERGED,
     EXACT,
-    NOT_CONVERGED,
     OSCILLATING,
+    UNSETTLED,
 )
 
 FS_THREE_GRIDS = 1.25
@@ -55,7 +55,7 @@ ASYMPTOTIC_BAND = (0.8, 1.25)
 
 
 @dataclass(frozen=True)
-class GridStudy:
+class ThreeGrids:
     """Result of a three-grid study of one quantity (f1 on the finest grid)."""
 
     f: tuple[float, float, float]
@@ -124,7 +124,7 @@ def richardson(f1: float, f2: float, r21: float, p: float) -> float:
     return (r21**p * f1 - f2) / (r21**p - 1.0)
 
 
-def study(f: tuple[float, float, float], h: tuple[float, float, float]) -> GridStudy:
+def study(f: tuple[float, float, float], h: tuple[float, float, float]) -> ThreeGrids:
     """Three-grid study; ``f`` and ``h`` in any order (sorted here, finest first)."""
     pairs = sorted(zip(h, f, strict=True))
     (h1, f1), (h2, f2), (h3, f3) = pairs
@@ -133,7 +133,7 @@ def study(f: tuple[float, float, float], h: tuple[float, float, float]) -> GridS
     g21 = gci(f1, f2, r21, p)
     g32 = gci(f2, f3, r32, p)
     asym = g32 / (r21**p * g21) if g21 and math.isfinite(g21) and g21 > 0 else math.nan
-    return GridStudy(f=(f1, f2, f3), h=(h1, h2, h3), p=p, f_ext=richardson(f1, f2, r21, p),
+    return ThreeGrids(f=(f1, f2, f3), h=(h1, h2, h3), p=p, f_ext=richardson(f1, f2, r21, p),
                      gci_fine=g21, gci_coarse=g32, asymptotic=asym,
                      oscillatory=(f3 - f2) * (f2 - f1) < 0,
                      converging=abs(f2 - f1) < abs(f3 - f2))
@@ -145,12 +145,12 @@ def is_exact(f: tuple[float, float, float], rel: float = EXACT_REL) -> bool:
     return max(f) - min(f) <= rel * scale
 
 
-def classify(st: GridStudy) -> tuple[str, str]:
+def classify(st: ThreeGrids) -> tuple[str, str]:
     """(status, reason) of a three-grid study (module doc); the reason is empty for
     ``converged`` and ``exact``."""
     f1, f2, f3 = st.f
     if not all(math.isfinite(v) for v in st.f):
-        return NOT_CONVERGED, "a value is missing (not finite) on some grid"
+        return UNSETTLED, "a value is missing (not finite) on some grid"
     if is_exact(st.f):
         return EXACT, ""
     e21, e32 = f2 - f1, f3 - f2
@@ -158,17 +158,17 @@ def classify(st: GridStudy) -> tuple[str, str]:
         return OSCILLATING, (f"differences change sign (f2 - f1 = {e21:.3g}, "
                              f"f3 - f2 = {e32:.3g})")
     if e21 == 0 or e32 == 0:
-        return NOT_CONVERGED, ("only the finest pair agrees" if e21 == 0 else
+        return UNSETTLED, ("only the finest pair agrees" if e21 == 0 else
                                "only the coarsest pair agrees") + ": no observed order"
     if not st.converging or not (st.p > 0):
-        return NOT_CONVERGED, (f"differences do not shrink (|f2 - f1| = {abs(e21):.3g} >= "
+        return UNSETTLED, (f"differences do not shrink (|f2 - f1| = {abs(e21):.3g} >= "
                                f"|f3 - f2| = {abs(e32):.3g})")
     lo, hi = ORDER_RANGE
     if not lo <= st.p <= hi:
-        return NOT_CONVERGED, (f"observed order {st.p:.3g} outside [{lo:g}, {hi:g}]: not "
+        return UNSETTLED, (f"observed order {st.p:.3g} outside [{lo:g}, {hi:g}]: not "
                                "in the asymptotic range")
     lo, hi = ASYMPTOTIC_BAND
     if not lo <= st.asymptotic <= hi:
-        return NOT_CONVERGED, (f"GCI32/(r21^p GCI21) = {st.asymptotic:.3g} outside "
+        return UNSETTLED, (f"GCI32/(r21^p GCI21) = {st.asymptotic:.3g} outside "
                                f"[{lo:g}, {hi:g}]: not in the asymptotic range")
     return CONVERGED, ""

@@ -17,7 +17,7 @@ agree when their difference lies within the *combined* uncertainty of the pair
     Eça & Hoekstra's estimate for anomalous behaviour, three times the data range,
     3 (max f − min f) / |f1| (J. Comput. Phys. 262 (2014) 104–130), since no order and
     no Richardson extrapolation can be trusted;
-  - ``not converged``, or no study of that solver: none — the row keeps its budget;
+  - ``unsettled``, or no study of that solver: none — the row keeps its budget;
   - a closed form (no grid): its stated accuracy, the budget of its registry record plus
     what it states for the kind of case (``case_term``: an asymptotic limit's deficit);
 
