@@ -117,3 +117,26 @@ def test_the_exchange_swaps_in_one_step_where_the_system_can(tmp_path):
     if not staging._exchange(a, b):
         pytest.skip("this file system cannot swap two paths (renameat2)")
     assert (b / "x").read_text() == "a" and not (a / "x").exists()
+
+
+def test_pages_drawn_by_two_processes_are_those_drawn_by_one(results, tmp_path):
+    """The case pages drawn by two forked processes (a CLI process has no other thread)
+    are, byte for byte, those this process draws alone, figures included."""
+    def files(out: Path) -> dict[str, bytes]:
+        return {str(p.relative_to(out)): p.read_bytes()
+                for p in [out / "index.html", *(out / "_report").rglob("*")] if p.is_file()}
+
+    subprocess.run([sys.executable, "-m", "reports", "report", str(results), "--workers",
+                    "2"], check=True, stdout=subprocess.DEVNULL, timeout=600)
+    two = files(results)
+    assert main(["report", str(results), "--workers", "1"]) == 0
+    one = files(results)
+    assert len([f for f in one if f.endswith(".png")]) >= 3 * len(NAMES)
+    drop = re.compile(rb"generated [^<]*")  # the index's time of writing
+    assert {k: drop.sub(b"", v) for k, v in two.items()} == \
+        {k: drop.sub(b"", v) for k, v in one.items()}
+
+
+def test_workers_below_one_is_refused(results, capsys):
+    assert main(["report", str(results), "--workers", "0"]) == 2
+    assert "--workers must be at least 1" in capsys.readouterr().err

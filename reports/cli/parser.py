@@ -128,6 +128,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     report = sub.add_parser("report", help="write DIR/index.html from the results in DIR")
     results_dir(report)
+    report.add_argument("--workers", type=int, default=None,
+                        help="draw the case pages in this many processes (default: the "
+                        "cores; 1 draws them in this one)")
 
     _gate_parser(sub, results_dir)
 

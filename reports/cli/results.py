@@ -19,11 +19,14 @@ def results_dir(args: argparse.Namespace) -> Path:
 
 
 def cmd_report(args: argparse.Namespace) -> int:
-    from reports.render.pages import write_report
+    from reports.render.pages import cores, write_report
 
     out = results_dir(args)
+    workers = cores() if args.workers is None else args.workers
+    if workers < 1:
+        raise UserError("--workers must be at least 1")
     try:
-        path = write_report(out)
+        path = write_report(out, workers)
     except RunFailed:  # written, showing incomplete or damaged cases: say where, exit 1
         print(f"report: {out / 'index.html'}")
         raise

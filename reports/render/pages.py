@@ -23,8 +23,14 @@ if it holds nothing but pages and figures, and ``index.html`` only if it is a re
 from __future__ import annotations
 
 import base64
+import multiprocessing
+import os
 import re
 import shutil
+import sys
+import threading
+from collections.abc import Iterator
+from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -137,12 +143,47 @@ def _replaceable(path: Path, what: str) -> None:
                         "replace it (remove it or report another directory)")
 
 
-def write_pages(results: Scan, out: Path) -> list[CaseRow]:
-    """Every complete case's page into ``out/_report`` (module doc); a case whose files
-    turn out to be damaged while drawn moves to ``results.damaged``.  The rows of the
-    index, failing cases first."""
+def _section(case: CaseResults) -> str | tuple[str]:
+    """The case's section, or (why,) when its files turn out to be damaged while drawn."""
     from reports.store.readers import DamagedResult
 
+    try:
+        return case_section(case)
+    except DamagedResult as exc:
+        return (str(exc),)
+
+
+def _forkable() -> bool:
+    """Whether a process may fork copies of itself here: on Linux, with no other thread
+    (a copy of a process with threads may hold their locks)."""
+    return sys.platform == "linux" and threading.active_count() == 1
+
+
+def sections(cases: list[CaseResults], workers: int) -> Iterator[str | tuple[str]]:
+    """:func:`_section` of every case, in order; drawn by ``workers`` forked copies of
+    this process where it may fork (:func:`_forkable`), so each draws exactly as this
+    one would (the same registry, styles and plugins), else here one after the other."""
+    workers = min(workers, len(cases))
+    if workers < 2 or not _forkable():
+        yield from map(_section, cases)
+        return
+    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+        yield from pool.map(_section, cases)
+
+
+def cores() -> int:
+    """The cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except (AttributeError, OSError):  # not Linux
+        return os.cpu_count() or 1
+
+
+def write_pages(results: Scan, out: Path, workers: int = 1) -> list[CaseRow]:
+    """Every complete case's page into ``out/_report`` (module doc), the cases drawn by
+    ``workers`` processes (:func:`sections`); a case whose files turn out to be damaged
+    while drawn moves to ``results.damaged``.  The rows of the index, failing cases
+    first."""
     final, staging = out / PAGES, out / _STAGING
     _replaceable(final, "pages")
     for left in [staging, *out.glob(f"{_STAGING_OLD}*")]:  # a killed report's
@@ -152,12 +193,11 @@ def write_pages(results: Scan, out: Path) -> list[CaseRow]:
     staging.mkdir()
     rows = []
     template = _ENV.get_template("case.html.j2")
-    for case in list(results.complete):
-        try:
-            section = case_section(case)
-        except DamagedResult as exc:
+    cases = list(results.complete)
+    for case, section in zip(cases, sections(cases, workers), strict=True):
+        if isinstance(section, tuple):
             results.complete.remove(case)
-            results.damaged[case.path.name] = str(exc)
+            results.damaged[case.path.name] = section[0]
             continue
         row = case_row(case)
         verdict = (f"{row.passed}/{row.gated} gated metrics passed"
@@ -191,10 +231,11 @@ def _thresholds_problem(out: Path) -> list[str]:
     return [line for line in threshold_gate(out)[0] if line.startswith("DAMAGED")]
 
 
-def write_report(out: Path) -> Path:
+def write_report(out: Path, workers: int = 1) -> Path:
     """Write the report of whatever complete results ``out`` holds: the case pages, then
     ``out/index.html`` atomically.  Incomplete or damaged cases are listed in the index,
     then raised as :class:`RunFailed` (one line each, the pages written: the CLI exits 1).
+    The case pages are drawn by ``workers`` processes (:func:`sections`).
     """
     from reports.registry.errors import RunFailed
     from reports.render.gate import case_problems
@@ -206,7 +247,7 @@ def write_report(out: Path) -> Path:
     path = out / layout.REPORT
     with held(layout.lock_file(out, PAGES)):  # one report of a directory at a time
         _replaceable(path, "index")
-        rows = write_pages(results, out)
+        rows = write_pages(results, out, workers)
         atomic_write_text(path, render_index(results, out, rows))
     lines = case_problems(results) + _thresholds_problem(out)
     if lines:

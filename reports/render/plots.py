@@ -34,13 +34,44 @@ def style(solver: str) -> dict:
     return dict(solvers.record(solver).style)
 
 
+#: the frame of every figure, in inches: its margins (the left one holds a panel's tick
+#: labels and y label, the top one the figure's and a panel's title), the gaps between
+#: panels, and what a colorbar's ticks and label add to the right of its panel.  A fixed
+#: frame draws each figure once (matplotlib's constrained layout draws it a second time
+#: to measure its labels, and ``bbox_inches="tight"`` a second time to crop).
+LEFT, RIGHT, BOTTOM, TOP = 0.8, 0.25, 0.55, 0.62
+ACROSS, DOWN = 0.85, 0.85
+COLORBAR = 0.8
+
+
+def panels(nrows: int, ncols: int, size: tuple[float, float], *, colorbar: str = "",
+           **kw) -> tuple[Figure, np.ndarray]:
+    """A figure of ``nrows`` × ``ncols`` panels of ``size`` (width, height) inches each
+    in the fixed frame above (``plt.subplots``'s axes, squeezed as it does unless
+    ``squeeze=False``); ``colorbar`` "each" leaves room for a colorbar right of every
+    panel (:func:`colorbar`), "shared" for one right of them all."""
+    w, h = size
+    across = ACROSS + (COLORBAR if colorbar == "each" else 0.0)
+    right = RIGHT + (COLORBAR if colorbar else 0.0)
+    width = LEFT + ncols * w + (ncols - 1) * across + right
+    height = BOTTOM + nrows * h + (nrows - 1) * DOWN + TOP
+    fig, axes = plt.subplots(nrows, ncols, figsize=(width, height), **kw)
+    fig.subplots_adjust(left=LEFT / width, right=1 - right / width, bottom=BOTTOM / height,
+                        top=1 - TOP / height, wspace=across / w, hspace=DOWN / h)
+    return fig, axes
+
+
+def colorbar(fig: Figure, mappable, ax, label: str, **kw):
+    """A colorbar 0.15 in wide taken from the right of ``ax`` (a panel, or a list of
+    panels for a shared one), its ticks and label in the room :func:`panels` left."""
+    boxes = [a.get_position() for a in np.atleast_1d(ax)]
+    span = (max(b.x1 for b in boxes) - min(b.x0 for b in boxes)) * fig.get_figwidth()
+    return fig.colorbar(mappable, ax=ax, label=label, fraction=0.15 / span, pad=0.1 / span,
+                        **kw)
+
+
 def png(fig: Figure) -> bytes:
-    """Render and close a figure, laid out by matplotlib's constrained layout (set here
-    if the figure has no layout engine), which keeps its labels inside the canvas: it is
-    saved as laid out (``bbox_inches="tight"`` would draw each figure twice to crop a few
-    pixels of margin)."""
-    if fig.get_layout_engine() is None:
-        fig.set_layout_engine("constrained")
+    """Render and close a figure, drawn once in its fixed frame (:func:`panels`)."""
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=DPI)
     plt.close(fig)
@@ -72,8 +103,8 @@ def traction_profiles(steps: Mapping[str, StepResult], a0: float, p0: float,
                    for st in steps.values())
 
     specs = [sp for sp in specs if sp[0] == "p_n" or nonzero(sp[0])]
-    fig, axes = plt.subplots(1, len(specs), layout="constrained",
-                             figsize=(3.5 * len(specs), 3.2))
+    fig, axes = panels(1, len(specs), (2.6, 2.1), squeeze=False)
+    axes = axes[0]
     for ax, (field, along, label) in zip(axes, specs, strict=True):
         for solver, st in steps.items():
             if field not in st.surface:
@@ -106,7 +137,7 @@ def _difference_panel(fig: Figure, ax, axes_a, field_a, axes_b, field_b, a0: flo
     lim = float(np.nanmax(np.abs(d))) if np.isfinite(d).any() else 1.0
     im = ax.pcolormesh(u / a0, v / a0, d.T, cmap="RdBu_r", vmin=-lim or -1, vmax=lim or 1,
                        shading="nearest")
-    fig.colorbar(im, ax=ax, label=label)
+    colorbar(fig, im, ax, label)
     return True
 
 
@@ -117,8 +148,7 @@ def difference_maps(steps: Mapping[str, StepResult], a0: float, p0: float,
             if field in steps[a].surface and field in steps[b].surface]
     if not todo:
         return None
-    fig, axes = plt.subplots(1, len(todo), layout="constrained", squeeze=False,
-                             figsize=(4.6 * len(todo), 3.8))
+    fig, axes = panels(1, len(todo), (3.2, 2.7), colorbar="each", squeeze=False)
     for ax, (a, b) in zip(axes[0], todo, strict=True):
         sa, sb = steps[a], steps[b]
         if not _difference_panel(fig, ax, (sa.x, sa.y), sa.surface[field], (sb.x, sb.y),
@@ -145,8 +175,7 @@ def plane_difference_maps(steps: Mapping[str, StepResult], a0: float, p0: float,
     todo = pairs(list(have))
     if not todo:
         return None
-    fig, axes = plt.subplots(1, len(todo), layout="constrained", squeeze=False,
-                             figsize=(4.6 * len(todo), 3.0))
+    fig, axes = panels(1, len(todo), (3.2, 1.9), colorbar="each", squeeze=False)
     half = 3.0 * _extent(steps, a0)
     for ax, (a, b) in zip(axes[0], todo, strict=True):
         pa, pb = have[a], have[b]
@@ -175,8 +204,9 @@ def vm_planes(steps: Mapping[str, StepResult], a0: float, p0: float,
                for n in st.planes if "vm" in st.planes[n].fields) / p0
     if math.isfinite(vmax) and vmax > 0:
         levels = np.linspace(0.0, vmax, 21)
-    fig, axes = plt.subplots(len(names), len(solvers), squeeze=False, layout="constrained",
-                             figsize=(4.2 * len(solvers), 2.9 * len(names)))
+    fig, axes = panels(len(names), len(solvers), (3.3, 1.6),
+                       colorbar="shared" if levels is not None else "each", squeeze=False)
+    cs = None
     for row, name in enumerate(names):
         for col, solver in enumerate(solvers):
             ax = axes[row][col]
@@ -197,7 +227,10 @@ def vm_planes(steps: Mapping[str, StepResult], a0: float, p0: float,
             ax.set_xlabel(f"{name[0]} / a0")
             ax.set_ylabel("z / a0 (depth)")
             ax.set_title(f"{solver}, {name} plane")
-            fig.colorbar(cs, ax=ax, label="σ_VM / p0", format="%.2f")
+            if levels is None:  # each panel its own scale
+                colorbar(fig, cs, ax, "σ_VM / p0", format="%.2f")
+    if levels is not None and cs is not None:  # one scale for every panel
+        colorbar(fig, cs, axes.ravel().tolist(), "σ_VM / p0", format="%.2f")
     fig.suptitle(title or "Von Mises stress on the planes through the load centre")
     return fig
 
@@ -215,7 +248,7 @@ def wear_profiles(history: Mapping[str, Mapping[int, StepResult]], a0: float,
                     lines.append((solver, n, st.x, w[:, _centre_index(st.y)]))
     if not lines:
         return None
-    fig, ax = plt.subplots(layout="constrained", figsize=(7, 3.6))
+    fig, ax = panels(1, 1, (5.9, 2.4))
     order = sorted({n for _, n, _, _ in lines})
     colours = plt.cm.viridis(np.linspace(0, 0.9, len(order)))
     for solver, n, x, w in lines:
@@ -249,7 +282,7 @@ def histories(summary: pd.DataFrame, a0: float, p0: float, title: str = "") -> F
         return None
     has_wear = summary["w_max"].fillna(0).abs().max() > 0
     ncols = 3 if has_wear else 2
-    fig, axes = plt.subplots(1, ncols, layout="constrained", figsize=(4.6 * ncols, 3.4))
+    fig, axes = panels(1, ncols, (3.4, 2.2))
     t, tlabel = progress_axis(summary, a0)
     for solver, rows in summary.groupby("solver", sort=False):
         tt = t.loc[rows.index]
@@ -298,7 +331,7 @@ def loops(tables: Mapping[str, Mapping[str, pd.DataFrame]], title: str = "") -> 
                 items.append((solver, name, t, cols))
     if not items:
         return None
-    fig, ax = plt.subplots(layout="constrained", figsize=(6, 4.2))
+    fig, ax = panels(1, 1, (4.9, 3.0))
     for solver, _name, t, (disp, force, cycle) in items:
         groups = t.groupby(cycle, sort=True) if cycle else [(None, t)]
         groups = list(groups)
@@ -336,7 +369,7 @@ def sweep_figure(summary: pd.DataFrame, points: Mapping[str, tuple[float, float]
     a0 = last["param"].map(lambda p: points.get(p, (math.nan, math.nan))[0])
     p0 = last["param"].map(lambda p: points.get(p, (math.nan, math.nan))[1])
     last = last.assign(vm=last["vm_max"] / p0, z=last["vm_max_z"] / a0, pm=last["p_max"] / p0)
-    fig, axes = plt.subplots(1, 3, layout="constrained", figsize=(13, 3.4))
+    fig, axes = panels(1, 3, (3.2, 2.2))
     key = str(last["param"].iloc[0]).split("=")[0]
     for solver, rows in last.groupby("solver", sort=False):
         rows = rows.sort_values("v")
