@@ -139,4 +139,4 @@ def test_pages_drawn_by_two_processes_are_those_drawn_by_one(results, tmp_path):
 
 def test_workers_below_one_is_refused(results, capsys):
     assert main(["report", str(results), "--workers", "0"]) == 2
-    assert "--workers must be at least 1" in capsys.readouterr().err
+    assert "--workers must be >= 1" in capsys.readouterr().err

@@ -24,7 +24,7 @@ def cmd_report(args: argparse.Namespace) -> int:
     out = results_dir(args)
     workers = cores() if args.workers is None else args.workers
     if workers < 1:
-        raise UserError("--workers must be at least 1")
+        raise UserError("--workers must be >= 1 (1 draws the pages in this process)")
     try:
         path = write_report(out, workers)
     except RunFailed:  # written, showing incomplete or damaged cases: say where, exit 1
