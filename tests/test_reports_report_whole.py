@@ -17,7 +17,8 @@ import pytest
 from test_cli_hostile_inputs import TINY
 
 from reports.cli import main
-from reports.render import pages
+from reports.render import coverage, pages
+from reports.store.results import scan
 
 NAMES = ("c1", "c2", "c3")
 
@@ -39,7 +40,8 @@ def _links(out: Path) -> list[str]:
 
 def _whole(out: Path) -> None:
     links = _links(out)
-    assert sorted(links) == sorted(f"_report/{n}.html" for n in NAMES)
+    assert sorted(links) == sorted([*(f"_report/{n}.html" for n in NAMES),
+                                    f"_report/{coverage.PAGE}"])
     assert all((out / link).is_file() for link in links)
     assert not list(out.glob("._report*"))
 
@@ -62,7 +64,8 @@ def test_a_report_stopped_before_its_pages_are_in_place(results, monkeypatch, ca
     before = {p: p.read_bytes() for p in [results / "index.html",
                                           *(results / "_report").rglob("*")] if p.is_file()}
     def killed(staging, final):
-        assert staging.name == "._report.partial" and len(list(staging.glob("*.html"))) == 3
+        staged = len(list(staging.glob("*.html")))
+        assert staging.name == "._report.partial" and staged == len(NAMES) + 1  # coverage
         raise KeyboardInterrupt  # as a kill there would: the pages all staged
 
     monkeypatch.setattr(pages, "replace_dir", killed)
@@ -140,3 +143,25 @@ def test_pages_drawn_by_two_processes_are_those_drawn_by_one(results, tmp_path):
 def test_workers_below_one_is_refused(results, capsys):
     assert main(["report", str(results), "--workers", "0"]) == 2
     assert "--workers must be >= 1" in capsys.readouterr().err
+
+
+def test_the_index_summarises_the_coverage_whose_page_holds_it_whole(results):
+    """The index's coverage is one row per regime, its counts those of the full table,
+    which is on its own page (issue 76, point 8)."""
+    assert main(["report", str(results), "--workers", "1"]) == 0
+    cov = coverage.table(scan(results))
+    assert not cov.empty
+
+    def section(page: Path) -> str:
+        return re.search(r'<div class="coverage">(.*?)</div>', page.read_text(), re.S)[1]
+
+    def cells(html: str) -> list[list[str]]:
+        return [re.findall(r"<td[^>]*>([^<]*)</td>", r) for r in html.split("<tr")[2:]]
+
+    index = cells(section(results / "index.html"))
+    full = cells(section(results / "_report" / coverage.PAGE))
+    regimes = list(dict.fromkeys(cov["regime"]))
+    assert [r[0] for r in index] == regimes
+    assert [sum(int(r[k]) for r in index) for k in (1, 2, 3, 4)] == [
+        len(cov), len(coverage.holes(cov)), cov["rows"].sum(), cov["gated"].sum()]
+    assert len(full) == len(coverage.pivot(cov)) >= len(index)

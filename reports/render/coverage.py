@@ -9,7 +9,8 @@ reference's); ``worn fretting`` from the second cycle on.  The kind of reference
 row's ``oracle`` (closed form, other solver, metamorphic relation).  A cell with rows
 and none gated says why: its rows counted by ``reason`` (a resolution floor, a band, a
 study; the codes of metrics.csv, in words), the most frequent first, and the most
-frequent note.  In the report's index and in ``benchmarks/README.md``; the quick
+frequent note.  Summarised by regime in the report's index, whole on its own page of
+the report and in ``benchmarks/README.md``; the quick
 chain's table is held by ``tests/test_suite_quick_gates.py``.
 """
 
@@ -22,6 +23,7 @@ from collections import Counter
 import pandas as pd
 
 from reports.registry import tolerances as tol
+from reports.store import layout
 from reports.store.results import CaseResults, Scan
 
 REGIMES = ("normal", "partial slip", "full sliding", "sliding wear",
@@ -122,15 +124,38 @@ def markdown(cov: pd.DataFrame) -> str:
     return "\n".join(lines)
 
 
-def html(results: Scan) -> str:
-    """The Coverage section of the report's index: :func:`pivot` of ``results``."""
+#: the page of the full table, beside the case pages (no case's name starts with "_")
+PAGE = "_coverage.html"
+
+
+def by_regime(cov: pd.DataFrame) -> pd.DataFrame:
+    """Per regime of :func:`table`: its cells (quantity × kind of reference with rows), the
+    cells with none of their rows gated, the rows and the gated rows; in the order of
+    :data:`REGIMES`."""
+    g = cov.assign(hole=cov["gated"] == 0).groupby("regime", sort=False)
+    out = pd.DataFrame({"cells": g.size(), "none gated": g["hole"].sum(),
+                        "rows": g["rows"].sum(), "gated rows": g["gated"].sum()})
+    out = out.reindex([r for r in REGIMES if r in out.index])
+    return out.astype(int).reset_index()
+
+
+def html(results: Scan) -> tuple[str, str]:
+    """The Coverage section of the report's index (:func:`by_regime`, linking the full
+    table) and the section of its own page (:func:`pivot`); empty without metric rows."""
     from reports.render.html_blocks import table_html
 
     cov = table(results)
     if cov.empty:
-        return ""
+        return "", ""
     n = len(holes(cov))
-    return ('<h2 id="coverage">Coverage</h2><div class="coverage"><p>Per regime, quantity '
+    index = ('<h2 id="coverage">Coverage</h2><div class="coverage"><p>Per regime: its cells '
+             "(quantity × kind of reference with compared rows), those with none gated, "
+             f"and the rows ({n} cell(s) with none gated; "
+             f'<a href="{layout.REPORT_PAGES}/{PAGE}">the full table</a>, '
+             "<code>reports/render/coverage.py</code>).</p>"
+             + table_html(by_regime(cov), left=1) + "</div>")
+    page = ('<h2 id="coverage">Coverage</h2><div class="coverage"><p>Per regime, quantity '
             "and kind of reference: gated rows / compared rows, and why none is gated "
-            f"where none is ({n} such cell(s); <code>reports/render/coverage.py</code>)."
-            "</p>" + table_html(pivot(cov), left=2) + "</div>")
+            f"where none is ({n} such cell(s)).</p>" + table_html(pivot(cov), left=2)
+            + "</div>")
+    return index, page

@@ -2,8 +2,9 @@
 
 - ``DIR/index.html``: the verdict first, then the gate's problems (failures first), then
   one row per case with its counts and a link to its page, failing cases first; the
-  thresholds table; the gate's coverage (:mod:`reports.render.coverage`).  No image: it
-  stays small whatever the results hold.
+  thresholds table; the gate's coverage by regime (:mod:`reports.render.coverage`).  No
+  image: it stays small whatever the results hold.
+- ``DIR/_report/_coverage.html``: the coverage's full table.
 - ``DIR/_report/<case>.html``: one page per case, the section of
   :func:`reports.render.html.case_section`; its figures are PNG files beside it,
   ``DIR/_report/<case>/fig_NNN.png``, loaded lazily.
@@ -206,6 +207,10 @@ def write_pages(results: Scan, out: Path, workers: int = 1) -> list[CaseRow]:
                                section=externalise(section, staging / case.name, case.name))
         (staging / f"{case.name}.html").write_text(page, encoding="utf-8")
         rows.append(row)
+    index, table = coverage.html(results)
+    if table:
+        (staging / coverage.PAGE).write_text(template.render(
+            name="coverage", css=CSS, verdict="", cls="", section=table), encoding="utf-8")
     replace_dir(staging, final)
     return sorted(rows, key=lambda r: (r.cls != "fail", r.name))
 
@@ -223,7 +228,7 @@ def render_index(results: Scan, out: Path, rows: list[CaseRow]) -> str:
     return _ENV.get_template("index.html.j2").render(
         css=CSS, out=str(out), when=provenance()["date"], problems=found, n_gated=n_on,
         off=off, unreported=unreported, cases=rows, thresholds=thresholds_html(out),
-        coverage=coverage.html(results))
+        coverage=coverage.html(results)[0])
 
 
 def _thresholds_problem(out: Path) -> list[str]:
