@@ -14,7 +14,7 @@ import pandas as pd
 
 from cases.result import atomic_path, atomic_write_text
 from reports.registry.errors import UserError
-from reports.render import plots
+from reports.render.frame import png
 from reports.render.html_blocks import CSS, escape
 from reports.store import layout
 from reports.store.write import write_csv
@@ -45,7 +45,7 @@ def figure(panels: tuple[Panel, ...], title: str) -> bytes | None:
         if panel.series:
             ax.legend(fontsize=7)
     fig.suptitle(title, fontsize=10)
-    return plots.png(fig)
+    return png(fig)
 
 
 def claims_frame(findings: dict[int, Finding]) -> pd.DataFrame:

@@ -11,7 +11,7 @@ from typing import Any
 
 import pandas as pd
 
-from reports.render import plots
+from reports.render.frame import png
 
 CSS = """
 body{font-family:system-ui,sans-serif;margin:1.5em;max-width:1400px;color:#222}
@@ -39,7 +39,7 @@ def img(png: bytes, alt: str) -> str:
 
 
 def fig(fig, alt: str) -> str:
-    return img(plots.png(fig), alt) if fig is not None else ""
+    return img(png(fig), alt) if fig is not None else ""
 
 
 def fmt(v: Any) -> str:
