@@ -168,8 +168,11 @@ def sections(cases: list[CaseResults], workers: int) -> Iterator[str | tuple[str
     if workers < 2 or not _forkable():
         yield from map(_section, cases)
         return
-    with ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork")) as pool:
+    pool = ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
+    try:
         yield from pool.map(_section, cases)
+    finally:  # a report stopped here waits for no case it will not write
+        pool.shutdown(cancel_futures=True)
 
 
 def cores() -> int:
