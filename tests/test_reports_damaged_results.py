@@ -339,9 +339,9 @@ def test_a_file_damaged_after_the_scan_moves_its_case_to_damaged(res):
 
     results = scan(res)
     truncated(npz(res / "hertz"))
-    rows = pages.write_pages(results, res)
-    page = pages.render_index(results, res, rows)
+    drawn = pages.write_pages(results, res)
+    page = pages.render_index(results, res, drawn)
     assert not results.complete and list(results.damaged) == ["hertz"]
     assert "step_0000.npz: corrupt or truncated archive" in results.damaged["hertz"]
-    assert 'id="incomplete"' in page and rows == []
+    assert 'id="incomplete"' in page and drawn.rows == []
     assert not (res / pages.PAGES / "hertz.html").exists()

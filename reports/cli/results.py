@@ -19,7 +19,8 @@ def results_dir(args: argparse.Namespace) -> Path:
 
 
 def cmd_report(args: argparse.Namespace) -> int:
-    from reports.render.pages import cores, write_report
+    from reports.render.pages import write_report
+    from reports.run.cluster import cores
 
     out = results_dir(args)
     workers = cores() if args.workers is None else args.workers

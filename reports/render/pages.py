@@ -25,7 +25,6 @@ from __future__ import annotations
 
 import base64
 import multiprocessing
-import os
 import re
 import shutil
 import sys
@@ -175,19 +174,19 @@ def sections(cases: list[CaseResults], workers: int) -> Iterator[str | tuple[str
         pool.shutdown(cancel_futures=True)
 
 
-def cores() -> int:
-    """The cores this process may run on."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except (AttributeError, OSError):  # not Linux
-        return os.cpu_count() or 1
+@dataclass(frozen=True)
+class Drawn:
+    """What :func:`write_pages` drew: the index's rows, failing cases first, and its
+    coverage section (:func:`reports.render.coverage.html`)."""
+
+    rows: list[CaseRow]
+    coverage: str
 
 
-def write_pages(results: Scan, out: Path, workers: int = 1) -> list[CaseRow]:
+def write_pages(results: Scan, out: Path, workers: int = 1) -> Drawn:
     """Every complete case's page into ``out/_report`` (module doc), the cases drawn by
     ``workers`` processes (:func:`sections`); a case whose files turn out to be damaged
-    while drawn moves to ``results.damaged``.  The rows of the index, failing cases
-    first."""
+    while drawn moves to ``results.damaged``; the coverage's page beside them."""
     final, staging = out / PAGES, out / _STAGING
     _replaceable(final, "pages")
     for left in [staging, *out.glob(f"{_STAGING_OLD}*")]:  # a killed report's
@@ -215,10 +214,10 @@ def write_pages(results: Scan, out: Path, workers: int = 1) -> list[CaseRow]:
         (staging / coverage.PAGE).write_text(template.render(
             name="coverage", css=CSS, verdict="", cls="", section=table), encoding="utf-8")
     replace_dir(staging, final)
-    return sorted(rows, key=lambda r: (r.cls != "fail", r.name))
+    return Drawn(sorted(rows, key=lambda r: (r.cls != "fail", r.name)), index)
 
 
-def render_index(results: Scan, out: Path, rows: list[CaseRow]) -> str:
+def render_index(results: Scan, out: Path, drawn: Drawn) -> str:
     """The index page (module doc)."""
     from reports.store.manifest import provenance
 
@@ -230,8 +229,8 @@ def render_index(results: Scan, out: Path, rows: list[CaseRow]) -> str:
                   *((k, f"damaged: {v}") for k, v in results.damaged.items())]
     return _ENV.get_template("index.html.j2").render(
         css=CSS, out=str(out), when=provenance()["date"], problems=found, n_gated=n_on,
-        off=off, unreported=unreported, cases=rows, thresholds=thresholds_html(out),
-        coverage=coverage.html(results)[0])
+        off=off, unreported=unreported, cases=drawn.rows, thresholds=thresholds_html(out),
+        coverage=drawn.coverage)
 
 
 def _thresholds_problem(out: Path) -> list[str]:
@@ -255,8 +254,7 @@ def write_report(out: Path, workers: int = 1) -> Path:
     path = out / layout.REPORT
     with held(layout.lock_file(out, PAGES)):  # one report of a directory at a time
         _replaceable(path, "index")
-        rows = write_pages(results, out, workers)
-        atomic_write_text(path, render_index(results, out, rows))
+        atomic_write_text(path, render_index(results, out, write_pages(results, out, workers)))
     lines = case_problems(results) + _thresholds_problem(out)
     if lines:
         raise RunFailed([*lines, f"report {path} written without the {len(lines)} "
