@@ -34,8 +34,9 @@ class RelativeCompliance:
     def rows(self, K: np.ndarray) -> np.ndarray:
         """``C_rel[K]`` (C order), entry by entry the numbers of :meth:`dense`."""
         Rz = self.Rz
-        return (Rz[K, None] * _rows(self.C_a, K) * Rz[None, :]) / self.E_a \
-            + _rows(self.C_b, K) / self.E_b
+        R_a = _rows(self.C_a, K)
+        R_b = R_a if self.C_b is self.C_a else _rows(self.C_b, K)
+        return (Rz[K, None] * R_a * Rz[None, :]) / self.E_a + R_b / self.E_b
 
     def dense(self) -> np.ndarray:
         """``C_rel`` whole."""
@@ -47,7 +48,7 @@ class RelativeCompliance:
         multiplies a Fortran-ordered matrix by a few rows faster than by a few columns)."""
         V = v.reshape(v.shape[0], -1)
         Rz = self.Rz[:, None]
-        if self.C_a is self.C_b:  # (Vᵀ C)ᵀ = C V: the faster product of few columns
+        if self.C_a is self.C_b and isinstance(self.C_b, np.ndarray):  # (Vᵀ C)ᵀ = C V
             k = V.shape[1]
             both = (np.vstack([(Rz * V).T, V.T]) @ self.C_b).T
             out = Rz * both[:, :k] / self.E_a + both[:, k:] / self.E_b
@@ -56,9 +57,12 @@ class RelativeCompliance:
         return out.reshape(v.shape)
 
 
-def _rows(C: np.ndarray, K: np.ndarray) -> np.ndarray:
+def _rows(C, K: np.ndarray) -> np.ndarray:
     """``C[K]`` of the exactly symmetric ``C``, read as columns where C is Fortran-ordered
-    (contiguous there)."""
+    (contiguous there); a compliance held otherwise forms its own rows
+    (:class:`fem_reference.model.parity.ParityCompliance`)."""
+    if not isinstance(C, np.ndarray):
+        return C.rows(K)
     if C.flags.f_contiguous and not C.flags.c_contiguous:
         return np.ascontiguousarray(C[:, K].T)
     return C[K]

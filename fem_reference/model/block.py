@@ -6,12 +6,24 @@ from __future__ import annotations
 
 import os
 import time
+from dataclasses import replace
 
 import numpy as np
+from skfem import MeshTet
 
 from ..errors import FemError
 from .elasticity import Factorization, P2Space, stiffness
 from .mesh import MeshSpec, block_mesh
+from .parity import (
+    PARITIES,
+    ParityCompliance,
+    ParityFactorization,
+    ParitySplit,
+    condensed,
+    extension,
+    held,
+    mirrored,
+)
 from .surface import ContactSurface
 
 
@@ -21,34 +33,39 @@ def cache_enabled() -> bool:
 
 class FactorisedBlock:
     """The case-independent part of a model: mesh, P2 space, supports, factorisations
-    and the condensed one-block compliances C₁(ν) (E = 1) of the contact DOFs."""
+    and the condensed one-block compliances C₁(ν) (E = 1) of the contact DOFs.
+
+    A full block is a quarter block and its mirror images, factorised and condensed as
+    the four parity problems of the quarter (:mod:`.parity`): ``factor`` and ``C1`` then
+    hold a :class:`~.parity.ParityFactorization` and a :class:`~.parity.ParityCompliance`,
+    which solve and multiply as the full block's own would."""
 
     def __init__(self, spec: MeshSpec, a_ref: float, comps: tuple[int, ...],
                  nus: tuple[float, ...], log=None, companion: bool = False,
                  r_touch: float | None = None):
         t0 = time.perf_counter()
-        self.mesh = block_mesh(spec, a_ref)
+        tol = 1e-9 * a_ref
+        self.split: ParitySplit | None = None
+        if spec.shape == "full":
+            quarter = block_mesh(replace(spec, shape="quarter"), a_ref)
+            P, T, image = mirrored(quarter.p, quarter.t, tol)
+            self.mesh = MeshTet(P, T)
+            quarter_space = P2Space(MeshTet(np.ascontiguousarray(P[:, :quarter.p.shape[1]]),
+                                             quarter.t))
+        else:
+            self.mesh = block_mesh(spec, a_ref)
         t_mesh = time.perf_counter()
         self.space = space = P2Space(self.mesh)
-        nodes = space.nodes
-        tol = 1e-9 * a_ref
-        fixed = np.zeros(space.ndofs, dtype=bool)
-        bottom = np.nonzero(np.abs(nodes[2] + spec.H * a_ref) < tol)[0]
-        fixed[(3 * bottom[:, None] + np.arange(3)).ravel()] = True
-        if spec.shape == "quarter":
-            fixed[3 * np.nonzero(np.abs(nodes[0]) < tol)[0]] = True
-        if spec.shape in ("quarter", "half"):
-            fixed[3 * np.nonzero(np.abs(nodes[1]) < tol)[0] + 1] = True
-        self.fixed = fixed
+        if spec.shape == "full":
+            self.split = ParitySplit(quarter_space, space, image)
+        bottom = bottom_of(space, spec, a_ref)
+        self.fixed = fixed = bottom | _mirror_supports(space, spec.shape, tol, (1, 1))
         self.free = np.nonzero(~fixed)[0]
         # the companion's supports: the same bottom, the mirror plane Y = 0 holding u_x, u_z
         self.free_anti = None
         if companion:
-            plane = np.nonzero(np.abs(nodes[1]) < tol)[0]
-            fixed_anti = np.zeros(space.ndofs, dtype=bool)
-            fixed_anti[(3 * bottom[:, None] + np.arange(3)).ravel()] = True
-            fixed_anti[(3 * plane[:, None] + np.array([0, 2])).ravel()] = True
-            self.free_anti = np.nonzero(~fixed_anti)[0]
+            self.free_anti = np.nonzero(~(bottom | _mirror_supports(space, "half", tol,
+                                                                     (1, -1))))[0]
         # condensed: the refined zone, or within r_touch where no node beyond can touch
         r_cond = spec.r_ref if r_touch is None else min(spec.r_ref, r_touch)
         self.surface = ContactSurface(space, r_cond * a_ref, (0, 1, 2), fixed)
@@ -59,36 +76,43 @@ class FactorisedBlock:
         if not np.array_equal(self.free[pos], cdofs):
             raise FemError("internal error: a condensed surface DOF is fixed")
         # stiffness, factorisation and condensation per distinct Poisson's ratio
-        self.factor: dict[float, Factorization] = {}
+        self.factor: dict[float, Factorization | ParityFactorization] = {}
         self.factor_anti: dict[float, Factorization] = {}  # the companion's (no condensation)
         self.stiffness: dict[float, object] = {}  # rows of K (E = 1) at the fixed DOFs
-        self.C1: dict[float, np.ndarray] = {}
-        t_asm = t_fac = t_cond = 0.0
+        self.C1: dict[float, np.ndarray | ParityCompliance] = {}
+        fixed_at = np.nonzero(fixed)[0]
+        t_asm = t_fac = 0.0
         for nu in sorted(set(nus)):
             ta = time.perf_counter()
-            K = stiffness(space, nu)
-            Kff = K[self.free][:, self.free].tocsr()
-            self.stiffness[nu] = K[np.nonzero(fixed)[0]].tocsr()
-            tb = time.perf_counter()
-            F = Factorization(Kff, partial=pos)
+            if self.split is None:
+                K = stiffness(space, nu)
+                self.stiffness[nu] = K[fixed_at].tocsr()
+                tb = time.perf_counter()
+                F = Factorization(K[self.free][:, self.free].tocsr(), partial=pos)
+                self.factor[nu], self.C1[nu] = F, F.schur_inverse()
+                unknowns = [self.free.size]
+            else:
+                support = np.isin(space.element_nodes, np.flatnonzero(bottom[::3])).any(axis=0)
+                self.stiffness[nu] = stiffness(space, nu, elements=np.flatnonzero(support)
+                                               )[fixed_at].tocsr()
+                K = stiffness(self.split.quarter, nu)
+                tb = time.perf_counter()
+                self.factor[nu], self.C1[nu], unknowns = _parity_factors(
+                    self.split, K, bottom_of(self.split.quarter, spec, a_ref), self.free,
+                    cdofs)
             tc = time.perf_counter()
-            self.C1[nu] = F.schur_inverse()
-            td = time.perf_counter()
-            self.factor[nu] = F
             t_anti = 0.0
             if self.free_anti is not None:
-                te = time.perf_counter()
                 fa = self.free_anti
                 self.factor_anti[nu] = Factorization(K[fa][:, fa].tocsr())
-                t_anti = time.perf_counter() - te
-            t_asm, t_cond = t_asm + tb - ta, t_cond + td - tc
-            t_fac += tc - tb + t_anti
+                t_anti = time.perf_counter() - tc
+            t_asm, t_fac = t_asm + tb - ta, t_fac + tc - tb + t_anti
             if log:
-                log(f"nu={nu}: {Kff.shape[0]} free DOFs, assembly {tb - ta:.1f} s, "
-                    f"factorisation {tc - tb:.1f} s, "
-                    f"condensation ({pos.size} DOFs) {td - tc:.1f} s")
+                log(f"nu={nu}: {'+'.join(map(str, unknowns))} free DOFs, assembly "
+                    f"{tb - ta:.1f} s, factorisation and condensation ({pos.size} DOFs) "
+                    f"{tc - tb:.1f} s")
         self.timings = {"mesh_s": t_mesh - t0, "assembly_s": t_asm, "factorisation_s": t_fac,
-                        "condensation_s": t_cond}
+                        "condensation_s": 0.0}
         self.uses = 0
 
     def release(self) -> None:
@@ -122,3 +146,41 @@ def factorised_block(spec: MeshSpec, a_ref: float, comps: tuple[int, ...], nus: 
             _LAST.append((key, core))
     core.uses += 1
     return core
+
+
+def bottom_of(space: P2Space, spec: MeshSpec, a_ref: float) -> np.ndarray:
+    """The DOFs (mask) of the block's fixed bottom Z = −H."""
+    nodes = np.flatnonzero(np.abs(space.nodes[2] + spec.H * a_ref) < 1e-9 * a_ref)
+    mask = np.zeros(space.ndofs, dtype=bool)
+    mask[(3 * nodes[:, None] + np.arange(3)).ravel()] = True
+    return mask
+
+
+def _mirror_supports(space: P2Space, shape: str, tol: float,
+                     parity: tuple[int, int]) -> np.ndarray:
+    """The DOFs (mask) the mirror planes of a quarter (X = 0, Y = 0) or half (Y = 0)
+    block hold in a field of ``parity`` (:func:`.parity.held`; the block's own load is
+    even: roller conditions)."""
+    axes = {"quarter": (0, 1), "half": (1,), "full": ()}[shape]
+    if not axes:
+        return np.zeros(space.ndofs, dtype=bool)
+    return held({axis: np.abs(space.nodes[axis]) < tol for axis in axes}, parity)
+
+
+def _parity_factors(split: ParitySplit, K, bottom: np.ndarray, free: np.ndarray,
+                    cdofs: np.ndarray) -> tuple[ParityFactorization, ParityCompliance, list]:
+    """The full block's factorisation and condensed compliance on the contact DOFs
+    ``cdofs`` from the quarter's stiffness ``K`` (:mod:`.parity`), and the unknowns of
+    each of the four factorisations."""
+    parts, blocks, index, sign, unknowns = [], [], [], [], []
+    for parity in PARITIES:
+        free_p = np.flatnonzero(~(bottom | split.held(parity)))
+        kept, row, s = condensed(split, parity, cdofs, free_p)
+        F = Factorization(K[free_p][:, free_p].tocsr(), partial=kept)
+        parts.append((extension(split, parity, free, free_p), F))
+        blocks.append(F.schur_inverse())
+        index.append(row)
+        sign.append(s)
+        unknowns.append(free_p.size)
+    return (ParityFactorization(parts),
+            ParityCompliance(tuple(blocks), np.array(index), np.array(sign)), unknowns)

@@ -105,13 +105,17 @@ def p2_gradients(lam: np.ndarray, grad_lambda: np.ndarray) -> np.ndarray:
     return np.concatenate([gv, ge], axis=-2)
 
 
-def stiffness(space: P2Space, nu: float, *, chunk: int = 20000) -> sp.csr_matrix:
-    """Global stiffness matrix (E = 1, Poisson's ratio ``nu``), CSR, DOFs 3*node+comp."""
+def stiffness(space: P2Space, nu: float, *, elements: np.ndarray | None = None,
+              chunk: int = 20000) -> sp.csr_matrix:
+    """Global stiffness matrix (E = 1, Poisson's ratio ``nu``), CSR, DOFs 3*node+comp;
+    of the ``elements`` alone where given (their rows are whole at the nodes no other
+    element touches)."""
     lam_, mu_ = lame(nu)
     rows, cols, vals = [], [], []
     eye3 = np.eye(3)
-    for start in range(0, space.nel, chunk):
-        sl = slice(start, min(start + chunk, space.nel))
+    el = np.arange(space.nel) if elements is None else np.asarray(elements)
+    for start in range(0, el.size, chunk):
+        sl = el[start:start + chunk]
         gl = space.grad_lambda[sl]  # (n, 4, 3)
         vol = space.volume[sl]
         n = gl.shape[0]

@@ -18,7 +18,10 @@ Symmetry: a quarter block (X, Y ≥ 0) when no tangential traction breaks the sy
 about both vertical planes (frictionless, or friction with no tangential load and the
 tribological axes along x, y), a half block (Y ≥ 0) for friction, tangential loading
 and sliding along ±x with axes along x, y; otherwise the full block.  Symmetry planes
-carry roller conditions (zero normal displacement).
+carry roller conditions (zero normal displacement).  The full block is a quarter block
+and its three mirror images, solved and condensed as the quarter's four parity problems
+(:mod:`fem_reference.model.parity`): the same numbers as the mirrored mesh's own
+factorisation to round-off, for a quarter of its factorisation's unknowns each.
 
 One more half block: identical materials sliding along ±x with axes *not* along x, y
 (the orthotropic pin at β = 45°).  Its contact problem is a normal one (K = 0) and
