@@ -40,7 +40,16 @@ def sliding(mu: float, h: float = 0.25, block: float = 10.0):
     return case, solve(case, vtu=False)
 
 
-def _check_cattaneo(case, res):
+#: the half-width of the band around Mindlin's stick edge c, in elements, where the
+#: traction has a √(c − r) kink: the FEM's error there depends on where its nodes fall
+#: against c and is not monotone in h on the grids from a0/4 to a0/8 (benchmarks/README.md,
+#: "Cattaneo–Mindlin's stick edge on five grids"); it is bounded, not converged
+CUSP_BAND = 2.0
+
+
+def _check_cattaneo(case, res) -> tuple[float, float, float]:
+    """(the stick radius' error / a0, the traction's largest error in the cusp band and
+    its rms error away from it, both / μ p0) along the x line, against Mindlin's."""
     a0, p0 = case.hertz_scales
     mu, P, Q = case.friction.mu1, case.load.P, case.load.Qx
     assert Q / (mu * P) == pytest.approx(0.5)
@@ -66,24 +75,28 @@ def _check_cattaneo(case, res):
     inside = np.abs(s) < 0.95 * a0
     q = mu * p0 * np.sqrt(np.clip(1 - (s / a0) ** 2, 0, None)) - (c_ref / a0) * mu * p0 * np.sqrt(
         np.clip(1 - (s / c_ref) ** 2, 0, None))
-    err = np.abs(line["p_x"] - q)[inside].max() / (mu * p0)
+    err = np.abs(line["p_x"] - q) / (mu * p0)
+    band = np.abs(np.abs(s) - c_ref) <= CUSP_BAND * h
+    cusp = err[inside & band].max()
+    away = float(np.sqrt(np.mean(err[inside & ~band] ** 2)))
     print(f"\nCattaneo-Mindlin Q/muP=0.5 h={case.fem.h}a0: stick radius (area) "
           f"{c_area / a0:.4f} a0, (x line) {c_line / a0:.4f} a0, Mindlin {c_ref / a0:.4f} a0; "
-          f"max |p_x - q|/(mu p0) "
-          f"{err:.3f}; DOFs {res.meta['dofs']}, contact DOFs {res.meta['surface_dofs']}")
-    return err
+          f"|p_x - q|/(mu p0): max in the cusp band {cusp:.3f}, rms away from it {away:.4f}; "
+          f"DOFs {res.meta['dofs']}, contact DOFs {res.meta['surface_dofs']}")
+    return abs(c_area - c_ref) / a0, cusp, away
 
 
 def test_cattaneo_mindlin_stick_radius():
-    """Stick radius within two elements at h = a0/4 and a0/8, and the tangential traction
-    converging to Mindlin's at the stick–slip cusp (a √(c − r) kink: order 1/2 in the max
-    norm; measured 0.215 and 0.142 of μ p0, order 0.6).  The bound 0.2 holds from
-    h = a0/8: at a0/4 the kink and the edge lie within single elements."""
+    """The stick radius within two elements at h = a0/4 and a0/8 and converging to
+    Mindlin's; the tangential traction converging to Mindlin's away from the stick edge
+    (at least order 0.7: the penalty's error is O(h)) and bounded (0.2 μ p0) in the band
+    of the √(c − r) kink, whose error is not monotone in h (:data:`CUSP_BAND`)."""
     hs = (0.25, 0.125)
-    errs = [_check_cattaneo(*cattaneo(h)) for h in hs]
-    # converging at about the cusp's order 1/2: order > 0.35, and < 0.2 from a0/8
-    print(assert_converges(hs, errs, min_order=0.35, finest=0.2,
-                           what="max |p_x - q|/(mu p0)"))
+    radius, cusp, away = zip(*(_check_cattaneo(*cattaneo(h)) for h in hs), strict=True)
+    print(assert_converges(hs, radius, min_order=0.35, what="|c - c_Mindlin|/a0"))
+    print(assert_converges(hs, away, min_order=0.7, finest=0.005,
+                           what="rms |p_x - q|/(mu p0) away from the stick edge"))
+    assert max(cusp) < 0.2
 
 
 def test_sliding_low_friction_maximum_below_surface():
@@ -130,8 +143,8 @@ def test_the_surface_row_carries_the_tractions():
 @pytest.mark.full
 def test_cattaneo_mindlin_fine():
     case, res = cattaneo(h=0.125, block=20.0)
-    err = _check_cattaneo(case, res)
-    assert err < 0.15
+    _, cusp, away = _check_cattaneo(case, res)
+    assert cusp < 0.15 and away < 0.005
 
 
 def test_cattaneo_mindlin_shift_is_the_half_space_one():

@@ -1,13 +1,16 @@
-"""The mirror-parity split of the full block (``fem_reference.model.parity``): its four
-quarter problems reproduce the full mirrored mesh's own factorisation and condensation
-to round-off, their solves its solves, and a sign put wrong breaks the identity."""
+"""The mirror-parity split of the full and half blocks (``fem_reference.model.parity``):
+the quarter's parity problems reproduce the mirrored mesh's own factorisation and
+condensation to round-off, their solves its solves (a half block's companion too), and
+a sign put wrong breaks the identity."""
 
 from __future__ import annotations
+
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from fem_reference.model import parity
+from fem_reference.model import block, parity
 from fem_reference.model.block import FactorisedBlock
 from fem_reference.model.elasticity import Factorization, stiffness
 from fem_reference.model.mesh import MeshSpec, build_points
@@ -17,16 +20,22 @@ NU = 0.3
 
 
 def _direct(core: FactorisedBlock) -> tuple[Factorization, np.ndarray]:
-    """The full mirrored mesh's own factorisation and Schur-complement compliance."""
+    """The mirrored mesh's own factorisation and Schur-complement compliance."""
     K = stiffness(core.space, NU)
     pos = np.searchsorted(core.free, core.surface.dofs[core.cidx])
     F = Factorization(K[core.free][:, core.free].tocsr(), partial=pos)
     return F, F.schur_inverse()
 
 
-@pytest.fixture(scope="module")
-def core() -> FactorisedBlock:
-    return FactorisedBlock(SPEC, 1.0, (0, 1, 2), (NU,))
+@pytest.fixture(scope="module", params=["full", "half"])
+def core(request) -> FactorisedBlock:
+    """The full block (four parities) and the half block mirrored about X = 0 with a
+    companion (two and two; not the half block a run uses, ``block.MIRRORED``)."""
+    half = request.param == "half"
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setitem(block.MIRRORED, "half", (0,))
+        return FactorisedBlock(replace(SPEC, shape=request.param), 1.0, (0, 1, 2), (NU,),
+                               companion=half)
 
 
 def test_the_mirrored_mesh_is_the_quarter_and_its_images():
@@ -70,9 +79,9 @@ def test_the_four_quarter_problems_are_the_full_blocks_compliance(core):
     V = np.random.default_rng(1).standard_normal((C.shape[0], 3))
     assert np.abs(C @ V - C_direct @ V).max() <= 1e-11 * np.abs(C_direct @ V).max()
     assert (C @ V[:, 0]).shape == (C.shape[0],)
-    # four blocks of about a quarter of the contact DOFs each (the cut planes' twice)
+    # a block per parity, of about 1/4 (full) or 1/2 (half) of the contact DOFs each
     sizes = [B.shape[0] for B in C.blocks]
-    assert len(sizes) == 4 and max(sizes) < 0.4 * C.shape[0]
+    assert len(sizes) == C.images and max(sizes) < 1.6 * C.shape[0] / C.images
 
 
 def test_the_four_quarter_solves_are_the_full_blocks_solve(core):
@@ -82,6 +91,12 @@ def test_the_four_quarter_solves_are_the_full_blocks_solve(core):
     assert np.abs(x - F.solve(B)).max() <= 1e-11 * np.abs(x).max()
     x0 = core.factor[NU].solve(B[:, 0])
     np.testing.assert_allclose(x0, x[:, 0], rtol=0, atol=1e-13 * np.abs(x).max())
+    if core.free_anti is not None:  # the companion: the half mesh's antisymmetric problem
+        fa = core.free_anti
+        F_anti = Factorization(stiffness(core.space, NU)[fa][:, fa].tocsr())
+        b = np.random.default_rng(3).standard_normal(fa.size)
+        x = core.factor_anti[NU].solve(b)
+        assert np.abs(x - F_anti.solve(b)).max() <= 1e-11 * np.abs(x).max()
 
 
 def test_the_supports_rows_are_the_full_stiffness_rows(core):
@@ -101,7 +116,7 @@ def test_a_wrong_parity_sign_breaks_the_identity(monkeypatch):
         return s
 
     monkeypatch.setattr(parity, "parity_signs", wrong)
-    bad = FactorisedBlock(SPEC, 1.0, (0, 1, 2), (NU,))
+    bad = FactorisedBlock(SPEC, 1.0, (0, 1, 2), (NU,))  # the full block
     monkeypatch.undo()
     _, C_direct = _direct(bad)
     assert np.abs(bad.C1[NU].dense() - C_direct).max() > 1e-3 * np.abs(C_direct).max()

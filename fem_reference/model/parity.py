@@ -26,6 +26,10 @@ compliance of the contact DOFs ``S`` is then
 contact DOFs and ``Q_p = (S T_p)ᵀ`` restricted to them, one ``±1`` per contact DOF
 (:class:`ParityCompliance`).  The quarter's factorisations are four of a quarter of the
 unknowns, its dense blocks four of a quarter of the size.
+
+The half block (Y ≥ 0, its load even about Y = 0 and held there by rollers) is the
+quarter and its image about X = 0 alone: the same sums over the two parities of its
+own ``p_y`` (+1; −1 for a companion's antisymmetric load), weighted ½.
 """
 
 from __future__ import annotations
@@ -42,10 +46,18 @@ from .elasticity import Factorization, P2Space
 PARITIES = ((1, 1), (1, -1), (-1, 1), (-1, -1))
 
 
-def mirrored(points: np.ndarray, tets: np.ndarray, tol: float
+def parities(axes: tuple[int, ...], p_y: int = 1) -> tuple[tuple[int, int], ...]:
+    """The parities of a block mirrored about ``axes``: all four for the full block;
+    for the half block (X = 0 alone) the two of its own parity ``p_y`` about Y = 0
+    (+1 its load, −1 a companion's)."""
+    return PARITIES if tuple(axes) == (0, 1) else tuple(p for p in PARITIES if p[1] == p_y)
+
+
+def mirrored(points: np.ndarray, tets: np.ndarray, tol: float, axes: tuple[int, ...] = (0, 1)
              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The full mesh (points (3, N), tets (4, 4 M)) of a quarter mesh (X, Y ≥ 0) and its
-    mirror images about X = 0 and Y = 0, and each full vertex's quarter vertex (N,).
+    """The mesh (points (3, N), tets (4, 2^k M)) of a quarter mesh (X, Y ≥ 0) and its
+    mirror images about the planes X_axis = 0 of ``axes`` (both: the full block; X = 0
+    alone: the half block Y ≥ 0), and each vertex's quarter vertex (N,).
 
     Coordinates within ``tol`` of a cut plane are put on it; a mirrored point is the
     exact negation of its image, a mirrored tetrahedron keeps the orientation."""
@@ -53,7 +65,7 @@ def mirrored(points: np.ndarray, tets: np.ndarray, tol: float
     P[:2][np.abs(P[:2]) <= tol] = 0.0
     T = np.asarray(tets)
     image = np.arange(P.shape[1])
-    for axis in (0, 1):
+    for axis in axes:
         off = np.flatnonzero(P[axis] != 0.0)
         index = np.arange(P.shape[1])
         index[off] = P.shape[1] + np.arange(off.size)
@@ -73,19 +85,25 @@ def parity_signs(parity: tuple[int, int]) -> np.ndarray:
 
 
 class ParitySplit:
-    """The full P2 space's nodes as images of the quarter's: each full node's quarter
-    node ``q`` and reflections ``r`` (2, N) (``r[0]``: X < 0, ``r[1]``: Y < 0)."""
+    """A mirrored P2 space's nodes (:func:`mirrored` about ``axes``) as images of the
+    quarter's: each node's quarter node ``q`` and reflections ``r`` (2, N) (``r[0]``:
+    X < 0, ``r[1]``: Y < 0); ``images`` the quarter's copies, 2^len(axes)."""
 
-    def __init__(self, quarter: P2Space, full: P2Space, image: np.ndarray):
+    def __init__(self, quarter: P2Space, full: P2Space, image: np.ndarray,
+                 axes: tuple[int, ...] = (0, 1)):
         edges = full.mesh.edges
-        self.quarter, self.full = quarter, full
+        self.quarter, self.full, self.axes = quarter, full, tuple(axes)
+        self.images = 2 ** len(self.axes)
         self.q = np.concatenate([image, quarter.edge_node(image[edges[0]],
                                                           image[edges[1]])])
         nodes = full.nodes
-        self.r = nodes[:2] < 0.0
-        want = np.vstack([np.abs(nodes[:2]), nodes[2:]])
+        self.r = np.zeros((2, nodes.shape[1]), dtype=bool)
+        want = nodes.copy()
+        for axis in self.axes:
+            self.r[axis] = nodes[axis] < 0.0
+            want[axis] = np.abs(nodes[axis])
         if not np.array_equal(quarter.nodes[:, self.q], want):
-            raise FemError("internal error: the full mesh is not the quarter's mirror images")
+            raise FemError("internal error: the mesh is not the quarter's mirror images")
         self.on_plane = quarter.nodes[:2] == 0.0  # (2, nq): X = 0, Y = 0
 
     def signs(self, parity: tuple[int, int]) -> np.ndarray:
@@ -129,11 +147,12 @@ def extension(split: ParitySplit, parity: tuple[int, int], rows: np.ndarray,
 
 
 class ParityFactorization:
-    """``K⁻¹`` of the full block as the four quarter factorisations ``F_p`` and their
-    extensions ``T_p`` (module doc): :meth:`solve` as :class:`Factorization`'s."""
+    """``K⁻¹`` of the mirrored block as the quarter's factorisations ``F_p`` and their
+    extensions ``T_p`` (module doc; ``images`` the quarter's copies, the weight of the
+    sum ¼ for the full block, ½ for the half): :meth:`solve` as :class:`Factorization`'s."""
 
-    def __init__(self, parts: list[tuple[sp.csr_matrix, Factorization]]):
-        self.parts = parts
+    def __init__(self, parts: list[tuple[sp.csr_matrix, Factorization]], images: int):
+        self.parts, self.images = parts, images
         self.n = parts[0][0].shape[0]
 
     def solve(self, b: np.ndarray) -> np.ndarray:
@@ -142,7 +161,7 @@ class ParityFactorization:
         out = np.zeros(b.shape)
         for T, F in self.parts:
             out += T @ F.solve(T.T @ b)
-        return 0.25 * out
+        return out / self.images
 
     def free(self) -> None:
         for _, F in self.parts:
@@ -151,15 +170,16 @@ class ParityFactorization:
 
 @dataclass(frozen=True)
 class ParityCompliance:
-    """``C = ¼ Σ_p Q_pᵀ C_p Q_p`` (module doc) of m contact DOFs, held as the quarter's
-    dense ``C_p`` with each contact DOF's row ``index[p]`` in it and factor ``sign[p]``
-    (0 where the parity holds the DOF): products and rows, never whole but on request.
-    Exactly symmetric: an entry and its transpose are the same products summed in the
-    same order."""
+    """``C = ¼ Σ_p Q_pᵀ C_p Q_p`` (module doc; ½ for the half block's two parities) of
+    m contact DOFs, held as the quarter's dense ``C_p`` with each contact DOF's row
+    ``index[p]`` in it and factor ``sign[p]`` (0 where the parity holds the DOF):
+    products and rows, never whole but on request.  Exactly symmetric: an entry and its
+    transpose are the same products summed in the same order."""
 
     blocks: tuple[np.ndarray, ...]
-    index: np.ndarray  # (4, m) int
-    sign: np.ndarray  # (4, m) float: ±1, 0
+    index: np.ndarray  # (parities, m) int
+    sign: np.ndarray  # (parities, m) float: ±1, 0
+    images: int  # the quarter's copies: the sum's weight 1 / images
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -172,7 +192,7 @@ class ParityCompliance:
         out = np.zeros((K.size, self.shape[0]))
         for C_p, j, s in zip(self.blocks, self.index, self.sign, strict=True):
             out += (s[K, None] * s[None, :]) * C_p[np.ix_(j[K], j)]
-        return 0.25 * out
+        return out / self.images
 
     def dense(self) -> np.ndarray:
         return self.rows(np.arange(self.shape[0]))
@@ -185,7 +205,7 @@ class ParityCompliance:
             y = np.zeros((C_p.shape[0], V.shape[1]))
             np.add.at(y, j, s[:, None] * V)
             out += s[:, None] * (C_p @ y)[j]
-        return (0.25 * out).reshape(np.shape(v))
+        return (out / self.images).reshape(np.shape(v))
 
 
 def condensed(split: ParitySplit, parity: tuple[int, int], cdofs: np.ndarray,
