@@ -44,9 +44,9 @@ class FactorisedBlock:
     """The case-independent part of a model: mesh, P2 space, supports, factorisations
     and the condensed one-block compliances C₁(ν) (E = 1) of the contact DOFs.
 
-    A full block is a quarter block and its three mirror images, a half block the
-    quarter and its image about X = 0, factorised and condensed as the quarter's parity
-    problems (:mod:`.parity`): ``factor`` (``factor_anti``) and ``C1`` then hold
+    A block of a shape :data:`MIRRORED` names (the full block) is a quarter block and its
+    mirror images, factorised and condensed as the quarter's parity problems
+    (:mod:`.parity`): ``factor`` (``factor_anti``) and ``C1`` then hold
     :class:`~.parity.ParityFactorization` and :class:`~.parity.ParityCompliance`, which
     solve and multiply as the block's own would."""
 
@@ -103,8 +103,8 @@ class FactorisedBlock:
                 self.factor[nu], self.C1[nu] = F, F.schur_inverse()
                 unknowns = [self.free.size]
             else:
-                held = np.flatnonzero(fixed.reshape(-1, 3).any(axis=1))
-                support = np.isin(space.element_nodes, held).any(axis=0)
+                held_nodes = np.flatnonzero(fixed.reshape(-1, 3).any(axis=1))
+                support = np.isin(space.element_nodes, held_nodes).any(axis=0)
                 self.stiffness[nu] = stiffness(space, nu, elements=np.flatnonzero(support)
                                                )[fixed_at].tocsr()
                 K = stiffness(self.split.quarter, nu)
