@@ -48,6 +48,18 @@ def test_not_run_names_only_what_was_asked_for(chain, capsys):
     assert line.endswith("; not run: contactmechanics"), line
 
 
+def test_each_problem_is_printed_once(chain, capsys):
+    """The coarse chain's failed rows: each once, on standard output with the verdict;
+    the error line counts them (they were repeated, one error line each)."""
+    assert main(["gate", str(chain)]) == 1
+    captured = capsys.readouterr()
+    fails = [x for x in captured.out.splitlines() if x.startswith("FAIL ")]
+    assert fails and len(set(fails)) == len(fails)
+    assert "FAIL " not in captured.err
+    assert [x for x in captured.err.splitlines() if x.startswith("contact-vv: error:")] == [
+        f"contact-vv: error: the gate found {len(fails)} problem(s), each listed above"]
+
+
 def test_every_solver_skipped_is_still_said_with_verbose(chain, capsys):
     main(["gate", str(chain), "--verbose"])
     out = capsys.readouterr().out

@@ -222,8 +222,8 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
              update_baseline: Path | None = None, drift_tol: float | None = None,
              verbose: bool = False, junit: Path | None = None) -> int:
     """Print the verdict, the problems and a line per case (module doc); 0 if no problem,
-    else :class:`RunFailed` carrying one line per problem (after printing them: the CLI
-    repeats them as errors, exit 1).
+    else :class:`RunFailed` with one line that counts them (each problem is printed once,
+    with the verdict: the CLI adds that line as its error, exit 1).
 
     ``baseline``: also fail on key numbers that drifted from the baselines in that folder
     (a baseline folder that cannot be read is a :class:`UserError`, before any output);
@@ -276,5 +276,5 @@ def run_gate(out: Path, *, stream: TextIO | None = None, baseline: Path | None =
     if junit is not None:
         print(f"junit: {write_junit(junit, results, found)}", file=stream)
     if found:
-        raise RunFailed(found)
+        raise RunFailed([f"the gate found {len(found)} problem(s), each listed above"])
     return 0
