@@ -34,8 +34,11 @@ Max norms of the tangential tractions and both norms of the σ_VM planes also le
 the *stick band*: the sample points within one cell — the coarser of the two solvers' own
 cells (``SolverRecord.cell_size``, the FEM's element) and the sample spacing — of either
 solver's stick–slip boundary (a stick point with a slip point of the same solver that
-close, or the reverse; on the planes, within that distance of the boundary's surface
-points).  There the tangential traction has a √(c − r) kink (docs/formulation.md §2.7):
+close, or the reverse; on the planes, within the edge band's width of the boundary's
+surface points — one cell or the pair's stress reach, the longer: an element that
+reaches the kink carries its error to every point of it, as one that reaches the contact
+edge does; the false alarm that showed it: benchmarks/README.md, "False alarms").  There
+the tangential traction has a √(c − r) kink (docs/formulation.md §2.7):
 a field held at points h apart and interpolated between them misses it by O(√(h/a)) of
 μp₀ whatever the solver, so the max norm across it measures the node spacing, not the
 solver (Cattaneo–Mindlin, Q/μP = 0.25, exact Mindlin sampled at the FEM's nodes and
@@ -273,9 +276,10 @@ def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
                 ) -> tuple[list[tuple[str, str, float]], float, list[maxima.PlaneSamples]]:
     """Subsurface σ_VM planes over the contact's neighbourhood, the edge band of
     half-width ``edge`` left out (:func:`neighbourhood`); both norms also leave out the
-    stick band of half-width ``band`` below the stick boundary's surface points (module
-    doc).  Also the larger depth spacing hz of the planes (0 if none) and both solvers'
-    σ_VM at the common points (:mod:`reports.compare.maxima`)."""
+    stick band, of half-width ``band`` or ``edge`` (the longer), below the stick
+    boundary's surface points (module doc).  Also the larger depth spacing hz of the
+    planes (0 if none) and both solvers' σ_VM at the common points
+    (:mod:`reports.compare.maxima`)."""
     rows, hz, samples = [], 0.0, []
     for q, name in tol.PLANE_FIELDS.items():
         pa_, pb_ = sa.planes.get(name), sb.planes.get(name)
@@ -293,7 +297,7 @@ def _plane_rows(sa: StepResult, sb: StepResult, p0: float, x0: float, y0: float,
         off = off_boundary(surface, zs, boundary, edge)
         line = (ss, np.array([y0])) if name == "xz" else (np.array([x0]), ss)
         kinks = np.concatenate([stick_edges(st, ss, line) for st in (sa, sb)])
-        kink = off & ~off_edges(ss, zs, kinks, band) if kinks.size else None
+        kink = off & ~off_edges(ss, zs, kinks, max(band, edge)) if kinks.size else None
         mask = off & neighbourhood(ss, zs, edges)
         # both norms off the stick band: below the kink, the plane carries the traction's
         # unresolved √(c − r) (the tractions' own L2 has the slip zone's floor instead)
