@@ -30,7 +30,7 @@ def _direct(core: FactorisedBlock) -> tuple[Factorization, np.ndarray]:
 @pytest.fixture(scope="module", params=["full", "half"])
 def core(request) -> FactorisedBlock:
     """The full block (four parities) and the half block mirrored about X = 0 with a
-    companion (two and two; not the half block a run uses, ``block.MIRRORED``)."""
+    companion (two and two), whatever ``block.MIRRORED`` holds."""
     half = request.param == "half"
     with pytest.MonkeyPatch.context() as mp:
         mp.setitem(block.MIRRORED, "half", (0,))

@@ -32,21 +32,18 @@ def cache_enabled() -> bool:
 
 
 #: the mirror planes X_axis = 0 a block of each shape is made of a quarter by
-#: (:func:`.parity.mirrored`), the others gmsh's own.  The half block mirrored about
-#: X = 0 (axes ``(0,)``, solved as two parities and two for a companion) is exact
-#: (``tests/test_fem_parity.py``) but not used: on its mesh the worn fretting point at
-#: β = 90° fails the gate's σ_VM maximum on the yz plane (benchmarks/README.md, "The
-#: full block by its quarter's parity problems")
-MIRRORED: dict[str, tuple[int, ...]] = {"quarter": (), "half": (), "full": (0, 1)}
+#: (:func:`.parity.mirrored`; the quarter is gmsh's own): the half block about X = 0
+#: (two parities, and two for a companion), the full block about X = 0 and Y = 0 (four)
+MIRRORED: dict[str, tuple[int, ...]] = {"quarter": (), "half": (0,), "full": (0, 1)}
 
 
 class FactorisedBlock:
     """The case-independent part of a model: mesh, P2 space, supports, factorisations
     and the condensed one-block compliances C₁(ν) (E = 1) of the contact DOFs.
 
-    A block of a shape :data:`MIRRORED` names (the full block) is a quarter block and its
-    mirror images, factorised and condensed as the quarter's parity problems
-    (:mod:`.parity`): ``factor`` (``factor_anti``) and ``C1`` then hold
+    A block of a shape :data:`MIRRORED` names (the half and full blocks) is a quarter
+    block and its mirror images, factorised and condensed as the quarter's parity
+    problems (:mod:`.parity`): ``factor`` (``factor_anti``) and ``C1`` then hold
     :class:`~.parity.ParityFactorization` and :class:`~.parity.ParityCompliance`, which
     solve and multiply as the block's own would."""
 
