@@ -14,9 +14,21 @@ from pathlib import Path
 import pandas as pd
 import pytest
 from damage_kit import edit_csv, rehash
-from test_cli_hostile_inputs import FRET, TINY, _answer
+from test_cli_hostile_inputs import FRET, TINY
 
 from reports.store import layout
+
+
+def _answer(argv: list[str], capsys) -> tuple[int, str]:
+    """(exit status, standard output and error): the gate lists its problems once, on
+    standard output with its verdict; a user error is on standard error."""
+    from reports.cli import main
+
+    code = main(argv)
+    captured = capsys.readouterr()
+    text = captured.out + captured.err
+    assert "Traceback" not in text, text
+    return code, text
 
 
 @pytest.fixture(scope="module")
