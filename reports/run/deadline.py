@@ -113,7 +113,9 @@ class _Watch:
     def __init__(self, limit_s: float, what: str, clock: Callable[[], float],
                  start: float) -> None:
         self.limit_s, self.what, self.clock, self.start = limit_s, what, clock, start
-        self.window = [(time.monotonic(), cpu_seconds())]  # the watchdog's own starts at 0
+        self.cpu = cpu_seconds()  # the last reading (the watchdog's own thread starts at 0)
+        self.done = 0.0  # the progress so far: the rises of the readings, summed
+        self.window = [(time.monotonic(), self.done)]
         self.reason: str | None = None
 
     def look(self) -> str | None:
@@ -124,13 +126,18 @@ class _Watch:
                     f"(its cost estimate times the estimate's calibration factor and the "
                     f"cores, plus {ALLOWANCE_S:g} s); stopped (on a slower processor, "
                     "raise --time-factor)")
+        # a child process that has ended but is not yet reaped is in neither psutil's
+        # list nor os.times for a moment: the reading falls, and a fall is no work undone
         cpu = _process_clock()
-        self.window.append((now, cpu))
+        self.done += max(cpu - self.cpu, 0.0)
+        self.cpu = cpu
+        self.window.append((now, self.done))
         while len(self.window) > 1 and now - self.window[1][0] >= STALL_S:
             self.window.pop(0)
-        t0, cpu0 = self.window[0]
-        if now - t0 >= STALL_S and cpu - cpu0 < STALL_FRACTION * (now - t0):
-            return (f"{self.what} made no progress: {cpu - cpu0:.3g} s of CPU time in the "
+        t0, done0 = self.window[0]
+        spent = self.done - done0
+        if now - t0 >= STALL_S and spent < STALL_FRACTION * (now - t0):
+            return (f"{self.what} made no progress: {spent:.3g} s of CPU time in the "
                     f"last {now - t0:.3g} s (less than {STALL_FRACTION:.0%} of a core); "
                     "stopped as hung")
         return None
